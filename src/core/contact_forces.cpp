@@ -1,0 +1,161 @@
+// The two force loops: particle-particle entries of the half Verlet list, and particle-wall
+// candidates. Each writes the force and torques of its contacts into the contact arrays (no
+// shared accumulators); Simulation::gather sums them per particle. The optional pieces of the
+// contact law are chosen once per call through the template switches.
+#include <algorithm>
+#include <cmath>
+
+#include "contact/contact_law.hpp"
+#include "core/simulation.hpp"
+
+namespace grainlab {
+namespace {
+
+template <bool R, bool T, bool RF>
+double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt) {
+  const long n = static_cast<long>(p.size());
+  const int materials = table.material_count();
+  const PairParams* params = &table(0, 0);
+  double max_fraction = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_fraction)
+  for (long i = 0; i < n; ++i) {
+    const Vec3 xi = p.position[i];
+    const double ri = p.radius[i];
+    const PairParams* row_params = params + p.material[i] * materials;
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const uint32_t j = c.partner[e];
+      const double rj = p.radius[j];
+      const Vec3 d = p.position[j] - xi;
+      const double reach = ri + rj;
+      const double dist2 = norm2(d);
+      if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
+        c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
+        c.normal_force[e] = 0.0;
+        c.sliding_spring[e] = Vec3{};
+        if constexpr (R) c.rolling_angle[e] = Vec3{};
+        if constexpr (T) c.twisting_angle[e] = 0.0;
+        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      ContactKinematics k;
+      k.normal = (1.0 / dist) * d;
+      k.overlap = reach - dist;
+      k.effective_radius = ri * rj / reach;
+      k.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
+      // contact point halfway through the overlap
+      const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
+      set_relative_velocity(k, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
+                            p.angular_velocity[j], lever_j);
+      double inertia = 0.0, contact_radius = 0.0;
+      if constexpr (R || T) {
+        inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
+        contact_radius = contact_circle_radius(ri, rj, dist);
+      }
+      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
+                          T ? &c.twisting_angle[e] : nullptr,
+                          RF ? &c.rolling_force_displacement[e] : nullptr};
+      const ContactResponse r = contact_response<R, T, RF>(row_params[p.material[j]], k, lever_i,
+                                                           lever_j, inertia, contact_radius, dt, h);
+      c.force_on_first[e] = r.force_on_a;
+      c.torque_on_first[e] = r.torque_on_a;
+      c.torque_on_second[e] = r.torque_on_b;
+      c.normal_force[e] = r.normal_force;
+      max_fraction = std::max(max_fraction, k.overlap / std::min(ri, rj));
+    }
+  }
+  return max_fraction;
+}
+
+template <bool R, bool T, bool RF>
+double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const PairTable& table,
+                   WallContacts& c, double dt) {
+  const long n = static_cast<long>(p.size());
+  double max_fraction = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_fraction)
+  for (long i = 0; i < n; ++i) {
+    const double r = p.radius[i];
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const Wall& w = walls[c.wall[e]];
+      const WallGap g = wall_gap(w, p.position[i]);
+      const double overlap = r - g.gap;
+      if (overlap <= 0.0 || p.inverse_mass[i] == 0.0) {
+        c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
+        c.normal_stiffness[e] = c.normal_force[e] = 0.0;
+        c.sliding_spring[e] = Vec3{};
+        if constexpr (R) c.rolling_angle[e] = Vec3{};
+        if constexpr (T) c.twisting_angle[e] = 0.0;
+        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+        continue;
+      }
+      ContactKinematics k;
+      k.normal = g.normal;
+      k.overlap = overlap;
+      k.effective_radius = r;
+      k.effective_mass = 1.0 / p.inverse_mass[i];
+      const double lever = g.gap;  // contact point on the wall surface
+      set_relative_velocity(k, p.velocity[i], p.angular_velocity[i], lever, w.velocity, Vec3{}, 0.0);
+      double inertia = 0.0, contact_radius = 0.0;
+      if constexpr (R || T) {
+        inertia = 1.0 / p.inverse_inertia[i];
+        contact_radius = contact_circle_radius_on_wall(r, overlap);
+      }
+      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
+                          T ? &c.twisting_angle[e] : nullptr,
+                          RF ? &c.rolling_force_displacement[e] : nullptr};
+      const ContactResponse resp = contact_response<R, T, RF>(
+          table(p.material[i], w.material), k, lever, 0.0, inertia, contact_radius, dt, h);
+      c.force_on_particle[e] = resp.force_on_a;
+      c.torque_on_particle[e] = resp.torque_on_a;
+      c.normal_stiffness[e] = resp.normal_stiffness;
+      c.normal_force[e] = resp.normal_force;
+      max_fraction = std::max(max_fraction, overlap / r);
+    }
+  }
+  return max_fraction;
+}
+
+// Calls F<R, T, RF>() for the runtime combination of optional pieces.
+template <template <bool, bool, bool> class F, class... Args>
+double dispatch(ContactPieces pieces, Args&&... args) {
+  const int code = (pieces.rolling ? 4 : 0) | (pieces.twisting ? 2 : 0) | (pieces.rolling_force ? 1 : 0);
+  switch (code) {
+    case 0: return F<false, false, false>::run(args...);
+    case 1: return F<false, false, true>::run(args...);
+    case 2: return F<false, true, false>::run(args...);
+    case 3: return F<false, true, true>::run(args...);
+    case 4: return F<true, false, false>::run(args...);
+    case 5: return F<true, false, true>::run(args...);
+    case 6: return F<true, true, false>::run(args...);
+    default: return F<true, true, true>::run(args...);
+  }
+}
+
+template <bool R, bool T, bool RF>
+struct PairKernel {
+  static double run(const ParticleStore& p, const PairTable& t, PairContacts& c, double dt) {
+    return pair_forces<R, T, RF>(p, t, c, dt);
+  }
+};
+template <bool R, bool T, bool RF>
+struct WallKernel {
+  static double run(const ParticleStore& p, const std::vector<Wall>& w, const PairTable& t,
+                    WallContacts& c, double dt) {
+    return wall_forces<R, T, RF>(p, w, t, c, dt);
+  }
+};
+
+}  // namespace
+
+void Simulation::compute_pair_forces() {
+  max_overlap_fraction_ =
+      dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step);
+}
+
+void Simulation::compute_wall_forces() {
+  max_overlap_fraction_ = std::max(
+      max_overlap_fraction_,
+      dispatch<WallKernel>(pieces_, particles_, walls_, table_, wall_contacts_, settings_.time_step));
+}
+
+}  // namespace grainlab

@@ -1,0 +1,54 @@
+// Contact storage, structure of arrays in neighbour-list order.
+//
+// PairContacts is the half Verlet list in CSR form: the partners of particle i are
+// partner[row_start[i] .. row_start[i+1]), all with index > i. Each entry carries its contact
+// history (present whether or not the spheres touch now; zero when they do not) and the force
+// and torques the last step computed for it. The transpose (col_start/col_pair) lists, for each
+// particle, the entries in which it is the second body, so that forces are gathered per
+// particle in a fixed order: no atomics, identical sums for any thread count.
+// Optional histories (rolling, twisting, rolling force) are empty unless a pair uses them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace grainlab {
+
+struct PairContacts {
+  std::vector<uint32_t> row_start;   // N + 1
+  std::vector<uint32_t> partner;     // per entry: second particle
+  std::vector<uint32_t> col_start;   // N + 1
+  std::vector<uint32_t> col_pair;    // entries where the particle is second
+  // history (m, rad)
+  std::vector<Vec3> sliding_spring;
+  std::vector<Vec3> rolling_angle;
+  std::vector<double> twisting_angle;
+  std::vector<Vec3> rolling_force_displacement;
+  // results of the last force computation
+  std::vector<Vec3> force_on_first;    // N
+  std::vector<Vec3> torque_on_first;   // N m
+  std::vector<Vec3> torque_on_second;  // N m
+  std::vector<double> normal_force;    // N (0 when not touching)
+
+  size_t size() const { return partner.size(); }
+};
+
+// Particle-wall candidates, CSR by particle: walls wall[row_start[i] .. row_start[i+1]).
+struct WallContacts {
+  std::vector<uint32_t> row_start;
+  std::vector<uint16_t> wall;
+  std::vector<Vec3> sliding_spring;
+  std::vector<Vec3> rolling_angle;
+  std::vector<double> twisting_angle;
+  std::vector<Vec3> rolling_force_displacement;
+  std::vector<Vec3> force_on_particle;   // N
+  std::vector<Vec3> torque_on_particle;  // N m
+  std::vector<double> normal_stiffness;  // N/m (0 when not touching)
+  std::vector<double> normal_force;      // N
+
+  size_t size() const { return wall.size(); }
+};
+
+}  // namespace grainlab

@@ -1,0 +1,255 @@
+#include "core/neighbor_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace grainlab {
+
+bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
+  if (position_at_build_.size() != p.size() || wall_point_at_build_.size() != walls.size())
+    return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  for (size_t w = 0; w < walls.size(); ++w)
+    if (norm2(walls[w].point - wall_point_at_build_[w]) > limit2) return true;
+  const long n = static_cast<long>(p.size());
+  int moved = 0;
+#pragma omp parallel for schedule(static) reduction(| : moved)
+  for (long i = 0; i < n; ++i)
+    moved |= norm2(p.position[i] - position_at_build_[i]) > limit2 ? 1 : 0;
+  return moved != 0;
+}
+
+void NeighborSearch::bin_and_sort(ParticleStore& p) {
+  const size_t n = p.size();
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  double max_radius = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], p.position[i][d]);
+      hi[d] = std::max(hi[d], p.position[i][d]);
+    }
+    max_radius = std::max(max_radius, p.radius[i]);
+  }
+  // Cells at least one cut-off wide; a few far-flying particles must not blow up the grid,
+  // so the number of cells is capped near 2 N (cells then grow).
+  const double cutoff = 2.0 * max_radius + skin_;
+  double size = cutoff;
+  const double cap = std::max<double>(27.0, 2.0 * static_cast<double>(n));
+  for (;;) {
+    double cells = 1.0;
+    for (int d = 0; d < 3; ++d) cells *= std::max(1.0, std::floor((hi[d] - lo[d]) / size));
+    if (cells <= cap) break;
+    size *= 1.25;
+  }
+  long total = 1;
+  for (int d = 0; d < 3; ++d) {
+    dims_[d] = static_cast<int>(std::max(1.0, std::floor((hi[d] - lo[d]) / size)));
+    total *= dims_[d];
+  }
+  grid_origin_ = lo;
+  cell_size_ = size;
+  // Cells may be wider than `size` along an axis (extent / dims); the stencil stays +-1 cell
+  // because the width never drops below the cut-off.
+  std::vector<uint32_t> cell(n);
+  for (size_t i = 0; i < n; ++i) {
+    int c[3];
+    for (int d = 0; d < 3; ++d) {
+      const double width = (hi[d] - lo[d]) / dims_[d];
+      const int k = width > 0.0 ? static_cast<int>((p.position[i][d] - lo[d]) / width) : 0;
+      c[d] = std::clamp(k, 0, dims_[d] - 1);
+    }
+    cell[i] = static_cast<uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
+  }
+  cell_start_.assign(static_cast<size_t>(total) + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++cell_start_[cell[i] + 1];
+  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+  std::vector<uint32_t> order(n);
+  std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (size_t i = 0; i < n; ++i) order[fill[cell[i]]++] = static_cast<uint32_t>(i);
+  p.permute(order);
+  cell_of_.resize(n);
+  for (size_t k = 0; k < n; ++k) cell_of_[k] = cell[order[k]];
+}
+
+void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) const {
+  const long n = static_cast<long>(p.size());
+  const int nx = dims_[0], ny = dims_[1], nz = dims_[2];
+  // Visits the partners j > i of particle i: its own cell (after i) and the neighbouring cells
+  // with a higher index (all their particles come after i in the sorted order).
+  auto for_each_partner = [&](long i, auto&& emit) {
+    const uint32_t c = cell_of_[i];
+    const int cx = static_cast<int>(c % nx), cy = static_cast<int>((c / nx) % ny),
+              cz = static_cast<int>(c / (nx * ny));
+    const Vec3 xi = p.position[i];
+    const double ri = p.radius[i];
+    const bool i_fixed = p.inverse_mass[i] == 0.0;
+    for (int dz = -1; dz <= 1; ++dz) {
+      const int z = cz + dz;
+      if (z < 0 || z >= nz) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int y = cy + dy;
+        if (y < 0 || y >= ny) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = cx + dx;
+          if (x < 0 || x >= nx) continue;
+          const uint32_t other = static_cast<uint32_t>((z * ny + y) * nx + x);
+          if (other < c) continue;
+          const uint32_t begin = other == c ? static_cast<uint32_t>(i + 1) : cell_start_[other];
+          for (uint32_t j = begin; j < cell_start_[other + 1]; ++j) {
+            if (i_fixed && p.inverse_mass[j] == 0.0) continue;  // two fixed bodies never interact
+            const double reach = ri + p.radius[j] + skin_;
+            if (norm2(p.position[j] - xi) < reach * reach) emit(j);
+          }
+        }
+      }
+    }
+  };
+
+  pairs.row_start.assign(static_cast<size_t>(n) + 1, 0);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    uint32_t count = 0;
+    for_each_partner(i, [&](uint32_t) { ++count; });
+    pairs.row_start[i + 1] = count;
+  }
+  std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
+  pairs.partner.resize(pairs.row_start[n]);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    uint32_t k = pairs.row_start[i];
+    for_each_partner(i, [&](uint32_t j) { pairs.partner[k++] = j; });
+  }
+  // Transpose, in increasing entry order (fixed, thread-independent).
+  pairs.col_start.assign(static_cast<size_t>(n) + 1, 0);
+  for (uint32_t j : pairs.partner) ++pairs.col_start[j + 1];
+  std::partial_sum(pairs.col_start.begin(), pairs.col_start.end(), pairs.col_start.begin());
+  pairs.col_pair.resize(pairs.partner.size());
+  std::vector<uint32_t> fill(pairs.col_start.begin(), pairs.col_start.end() - 1);
+  for (uint32_t e = 0; e < pairs.partner.size(); ++e) pairs.col_pair[fill[pairs.partner[e]]++] = e;
+}
+
+void NeighborSearch::build_wall_candidates(const ParticleStore& p, const std::vector<Wall>& walls,
+                                           WallContacts& c) const {
+  const long n = static_cast<long>(p.size());
+  c.row_start.assign(static_cast<size_t>(n) + 1, 0);
+  for (long i = 0; i < n; ++i) {
+    uint32_t count = 0;
+    for (const Wall& w : walls) count += wall_gap(w, p.position[i]).gap < p.radius[i] + skin_;
+    c.row_start[i + 1] = c.row_start[i] + count;
+  }
+  c.wall.resize(c.row_start[n]);
+  for (long i = 0; i < n; ++i) {
+    uint32_t k = c.row_start[i];
+    for (size_t w = 0; w < walls.size(); ++w)
+      if (wall_gap(walls[w], p.position[i]).gap < p.radius[i] + skin_)
+        c.wall[k++] = static_cast<uint16_t>(w);
+  }
+}
+
+namespace {
+
+// Keys of the contacts that carry history, sorted, with their entry index in the old store.
+struct KeyedEntry {
+  uint64_t key;
+  uint32_t entry;
+  bool operator<(const KeyedEntry& o) const { return key < o.key; }
+};
+
+template <class Store>
+bool has_history(const Store& s, size_t e) {
+  return norm2(s.sliding_spring[e]) != 0.0 || (!s.rolling_angle.empty() && norm2(s.rolling_angle[e]) != 0.0) ||
+         (!s.twisting_angle.empty() && s.twisting_angle[e] != 0.0) ||
+         (!s.rolling_force_displacement.empty() && norm2(s.rolling_force_displacement[e]) != 0.0);
+}
+
+// Sizes the history arrays of `fresh` and copies each entry's history from `old` where the key
+// of the entry was present before.
+template <class Store, class KeyOfNew>
+void carry_history(const Store& old, const std::vector<KeyedEntry>& old_keys, Store& fresh,
+                   ContactPieces pieces, KeyOfNew key_of_new) {
+  const size_t m = fresh.size();
+  fresh.sliding_spring.assign(m, Vec3{});
+  fresh.rolling_angle.assign(pieces.rolling ? m : 0, Vec3{});
+  fresh.twisting_angle.assign(pieces.twisting ? m : 0, 0.0);
+  fresh.rolling_force_displacement.assign(pieces.rolling_force ? m : 0, Vec3{});
+  if (old_keys.empty()) return;
+  const long count = static_cast<long>(m);
+#pragma omp parallel for schedule(static)
+  for (long e = 0; e < count; ++e) {
+    const KeyedEntry probe{key_of_new(e), 0};
+    auto it = std::lower_bound(old_keys.begin(), old_keys.end(), probe);
+    if (it == old_keys.end() || it->key != probe.key) continue;
+    fresh.sliding_spring[e] = old.sliding_spring[it->entry];
+    if (pieces.rolling) fresh.rolling_angle[e] = old.rolling_angle[it->entry];
+    if (pieces.twisting) fresh.twisting_angle[e] = old.twisting_angle[it->entry];
+    if (pieces.rolling_force)
+      fresh.rolling_force_displacement[e] = old.rolling_force_displacement[it->entry];
+  }
+}
+
+uint64_t pair_key(uint32_t id_a, uint32_t id_b) {
+  const uint32_t lo = std::min(id_a, id_b), hi = std::max(id_a, id_b);
+  return (static_cast<uint64_t>(lo) << 32) | hi;
+}
+
+}  // namespace
+
+void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, PairContacts& pairs,
+                             WallContacts& wall_contacts, ContactPieces pieces) {
+  // Remember the histories under permanent keys before indices change.
+  std::vector<KeyedEntry> old_pair_keys, old_wall_keys;
+  if (pairs.row_start.size() == p.size() + 1) {
+    for (size_t i = 0; i < p.size(); ++i)
+      for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
+        if (has_history(pairs, e)) old_pair_keys.push_back({pair_key(p.id[i], p.id[pairs.partner[e]]), e});
+  }
+  if (wall_contacts.row_start.size() == p.size() + 1) {
+    for (size_t i = 0; i < p.size(); ++i)
+      for (uint32_t e = wall_contacts.row_start[i]; e < wall_contacts.row_start[i + 1]; ++e)
+        if (has_history(wall_contacts, e))
+          old_wall_keys.push_back({(static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e], e});
+  }
+  std::sort(old_pair_keys.begin(), old_pair_keys.end());
+  std::sort(old_wall_keys.begin(), old_wall_keys.end());
+  PairContacts old_pairs = std::move(pairs);
+  WallContacts old_walls = std::move(wall_contacts);
+  pairs = PairContacts{};
+  wall_contacts = WallContacts{};
+
+  bin_and_sort(p);
+  build_pairs(p, pairs);
+  build_wall_candidates(p, walls, wall_contacts);
+
+  // Entry -> first particle, for the key of each new pair entry.
+  std::vector<uint32_t> first(pairs.size());
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e) first[e] = static_cast<uint32_t>(i);
+  carry_history(old_pairs, old_pair_keys, pairs, pieces,
+                [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
+  std::vector<uint32_t> owner(wall_contacts.size());
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = wall_contacts.row_start[i]; e < wall_contacts.row_start[i + 1]; ++e)
+      owner[e] = static_cast<uint32_t>(i);
+  carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
+    return (static_cast<uint64_t>(p.id[owner[e]]) << 16) | wall_contacts.wall[e];
+  });
+
+  const size_t m = pairs.size();
+  pairs.force_on_first.assign(m, Vec3{});
+  pairs.torque_on_first.assign(m, Vec3{});
+  pairs.torque_on_second.assign(m, Vec3{});
+  pairs.normal_force.assign(m, 0.0);
+  const size_t mw = wall_contacts.size();
+  wall_contacts.force_on_particle.assign(mw, Vec3{});
+  wall_contacts.torque_on_particle.assign(mw, Vec3{});
+  wall_contacts.normal_stiffness.assign(mw, 0.0);
+  wall_contacts.normal_force.assign(mw, 0.0);
+
+  position_at_build_ = p.position;
+  wall_point_at_build_.resize(walls.size());
+  for (size_t w = 0; w < walls.size(); ++w) wall_point_at_build_[w] = walls[w].point;
+  ++rebuild_count_;
+}
+
+}  // namespace grainlab

@@ -1,0 +1,52 @@
+// Neighbour search: linked cells feeding a half Verlet list with a skin.
+//
+// At each rebuild the particles are binned into cells at least (2 r_max + skin) wide and
+// re-sorted in cell order (counting sort), so neighbours in space are neighbours in memory and
+// every cell's particles are contiguous. Because of that order, "partner index > i" needs only
+// the particle's own cell and the cells after it; a pair enters the list when the gap between
+// the spheres is below the skin. Walls get a candidate list the same way. Contact histories are
+// carried across a rebuild by a sort-merge on the permanent particle ids.
+// The list stays valid while no particle and no wall has moved more than skin/2.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "contact/pair_table.hpp"
+#include "core/contact_store.hpp"
+#include "core/particles.hpp"
+#include "geometry/wall.hpp"
+
+namespace grainlab {
+
+class NeighborSearch {
+ public:
+  explicit NeighborSearch(double skin) : skin_(skin) {}
+
+  bool needs_rebuild(const ParticleStore& particles, const std::vector<Wall>& walls) const;
+
+  void rebuild(ParticleStore& particles, const std::vector<Wall>& walls, PairContacts& pairs,
+               WallContacts& wall_contacts, ContactPieces pieces);
+
+  double skin() const { return skin_; }
+  long rebuild_count() const { return rebuild_count_; }
+
+ private:
+  void bin_and_sort(ParticleStore& particles);
+  void build_pairs(const ParticleStore& particles, PairContacts& pairs) const;
+  void build_wall_candidates(const ParticleStore& particles, const std::vector<Wall>& walls,
+                             WallContacts& contacts) const;
+
+  double skin_;
+  long rebuild_count_ = 0;
+  // cell grid of the last rebuild
+  Vec3 grid_origin_;
+  double cell_size_ = 0.0;
+  int dims_[3] = {1, 1, 1};
+  std::vector<uint32_t> cell_start_;  // cells + 1
+  std::vector<uint32_t> cell_of_;     // per particle (sorted order)
+  std::vector<Vec3> position_at_build_;
+  std::vector<Vec3> wall_point_at_build_;
+};
+
+}  // namespace grainlab

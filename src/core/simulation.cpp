@@ -1,0 +1,154 @@
+#include "core/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace grainlab {
+
+Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTable table,
+                       SimulationSettings settings)
+    : particles_(std::move(particles)),
+      walls_(std::move(walls)),
+      table_(std::move(table)),
+      settings_(settings),
+      pieces_(table_.pieces()),
+      neighbors_(settings.skin) {
+  if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time step must be > 0");
+  if (!(settings_.skin > 0.0)) throw std::invalid_argument("Verlet skin must be > 0");
+  neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
+  compute_forces();
+}
+
+void Simulation::step() {
+  kick_and_drift();
+  if (neighbors_.needs_rebuild(particles_, walls_))
+    neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
+  compute_forces();
+  half_kick();
+  time_ += settings_.time_step;
+  ++step_count_;
+  check_health();
+}
+
+// First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
+void Simulation::kick_and_drift() {
+  const double dt = settings_.time_step, half = 0.5 * dt;
+  ParticleStore& p = particles_;
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    p.position[i] += dt * p.velocity[i];
+    p.rotation[i] += dt * p.angular_velocity[i];
+  }
+  for (Wall& w : walls_) w.point += dt * w.velocity;
+}
+
+void Simulation::half_kick() {
+  const double half = 0.5 * settings_.time_step;
+  ParticleStore& p = particles_;
+  const long n = static_cast<long>(p.size());
+  double max_speed2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_speed2)
+  for (long i = 0; i < n; ++i) {
+    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    const double v2 = norm2(p.velocity[i]);
+    // NaN compares false: a NaN speed is recorded as infinite.
+    max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
+  }
+  max_speed2_ = max_speed2;
+}
+
+void Simulation::compute_forces() {
+  compute_pair_forces();
+  compute_wall_forces();
+  gather();
+}
+
+// Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
+// where it is second (opposite force) and its wall contacts.
+void Simulation::gather() {
+  ParticleStore& p = particles_;
+  const PairContacts& c = pairs_;
+  const WallContacts& wc = wall_contacts_;
+  const Vec3 g = settings_.gravity;
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
+    Vec3 t;
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      f += c.force_on_first[e];
+      t += c.torque_on_first[e];
+    }
+    for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
+      const uint32_t e = c.col_pair[k];
+      f -= c.force_on_first[e];
+      t += c.torque_on_second[e];
+    }
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
+      f += wc.force_on_particle[e];
+      t += wc.torque_on_particle[e];
+    }
+    p.force[i] = f;
+    p.torque[i] = t;
+  }
+  // Wall totals, serial in entry order (few entries; deterministic).
+  for (Wall& w : walls_) {
+    w.force = Vec3{};
+    w.contact_stiffness = 0.0;
+    w.contact_count = 0;
+  }
+  for (size_t e = 0; e < wc.size(); ++e) {
+    if (wc.normal_stiffness[e] == 0.0) continue;
+    Wall& w = walls_[wc.wall[e]];
+    w.force -= wc.force_on_particle[e];
+    w.contact_stiffness += wc.normal_stiffness[e];
+    ++w.contact_count;
+  }
+}
+
+void Simulation::check_health() const {
+  const double max_speed = settings_.max_speed;
+  if (!(max_speed2_ <= max_speed * max_speed)) {
+    const bool nan = std::isinf(max_speed2_) || std::isnan(max_speed2_);
+    throw BlowUpError(fmt::format(
+        "the run blew up at t = {:.6g} s (step {}): {}. The time step ({:.3g} s) is too large for "
+        "the contact stiffness; lower simulation.dt_fraction (or dt), or check the initial "
+        "velocities and wall speeds.",
+        time_, step_count_,
+        nan ? std::string("a particle velocity became NaN")
+            : fmt::format("a particle reached {:.3g} m/s, above simulation.max_speed = {:.3g} m/s",
+                          std::sqrt(max_speed2_), max_speed),
+        settings_.time_step));
+  }
+  if (max_overlap_fraction_ > settings_.max_overlap_fraction) {
+    throw BlowUpError(fmt::format(
+        "the run blew up at t = {:.6g} s (step {}): two bodies overlap by {:.2f} % of a radius "
+        "(limit {:.2f} %). The contacts are too soft for the load or the time step ({:.3g} s) is too "
+        "large; lower simulation.dt_fraction (or dt), slow the walls, or raise the stiffness.",
+        time_, step_count_, 100.0 * max_overlap_fraction_, 100.0 * settings_.max_overlap_fraction,
+        settings_.time_step));
+  }
+}
+
+double Simulation::kinetic_energy() const {
+  const ParticleStore& p = particles_;
+  double e = 0.0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p.inverse_mass[i] == 0.0) continue;
+    e += 0.5 * norm2(p.velocity[i]) / p.inverse_mass[i] +
+         0.5 * norm2(p.angular_velocity[i]) / p.inverse_inertia[i];
+  }
+  return e;
+}
+
+long Simulation::touching_pair_count() const {
+  return std::count_if(pairs_.normal_force.begin(), pairs_.normal_force.end(),
+                       [](double f) { return f > 0.0; });
+}
+
+}  // namespace grainlab
