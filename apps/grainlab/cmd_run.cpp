@@ -1,7 +1,37 @@
+#include <fmt/format.h>
+
+#include <memory>
+
 #include "command.hpp"
+#include "core/simulation.hpp"
+#include "io/config_error.hpp"
+#include "io/scene_run.hpp"
+
 namespace grainlab::app {
+
 Command add_run_command(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("run", "run");
-  return {sub, [] { return exit_failed; }};
+  auto options = std::make_shared<RunOptions>();
+  auto config = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand("run", "run a scene or virtual test from a TOML config");
+  sub->add_option("config", *config, "scene configuration (TOML; schema: docs/scene-schema.md)")->required();
+  sub->add_option("--out", options->out_dir, "output directory (created; must be empty)")->required();
+  sub->add_flag("--overwrite", options->overwrite, "replace results in an existing output directory");
+  sub->add_option("--threads", options->threads, "OpenMP threads (results do not depend on it)")
+      ->check(CLI::Range(1, 1024));
+  sub->add_flag("--quiet", options->quiet, "no progress output");
+  return {sub, [options, config] {
+            try {
+              run_scene(*config, *options);
+            } catch (const ConfigError& e) {
+              fmt::print(stderr, "grainlab: error: {}\n", e.what());
+              return exit_bad_input;
+            } catch (const BlowUpError& e) {
+              fmt::print(stderr, "grainlab: error: {}\n", e.what());
+              return exit_failed;
+            }
+            fmt::print("results written to {}/\n", options->out_dir);
+            return exit_ok;
+          }};
 }
+
 }  // namespace grainlab::app

@@ -1,0 +1,61 @@
+// Result files: the output directory, atomic writes (a file is either complete or absent),
+// particle tables as CSV and ParaView (VTK XML) snapshots.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/particles.hpp"
+#include "geometry/wall.hpp"
+
+namespace grainlab {
+
+// Creates `dir` for results. An existing non-empty directory is refused (ConfigError) unless
+// `overwrite`, in which case the files grainlab writes are replaced.
+void prepare_output_dir(const std::string& dir, bool overwrite);
+
+// Writes `content` to `path` via a temporary file and rename, so a reader never sees half a file.
+void write_file_atomically(const std::string& path, const std::string& content);
+
+// Line-buffered CSV written to PATH.partial and renamed to PATH by close(): an interrupted run
+// leaves no file that looks complete.
+class CsvStream {
+ public:
+  CsvStream(std::string path, const std::string& header);
+  ~CsvStream();
+  CsvStream(const CsvStream&) = delete;
+  CsvStream& operator=(const CsvStream&) = delete;
+  void write(const std::string& line) { std::fputs(line.c_str(), file_); }
+  void close();
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+// Round-trip exact text of a double (17 significant digits).
+std::string exact(double v);
+
+// One CSV row per particle: t,id,x,y,z,vx,vy,vz,wx,wy,wz (SI units).
+inline constexpr const char* trace_header = "t,id,x,y,z,vx,vy,vz,wx,wy,wz";
+std::string trace_row(double time, const ParticleStore& p, size_t index);
+
+// Every particle, sorted by id: id,material,radius,x,y,z,vx,vy,vz,wx,wy,wz.
+std::string final_table(const ParticleStore& p);
+
+// Indices of the particles sorted by id.
+std::vector<size_t> indices_by_id(const ParticleStore& p);
+
+// One VTK UnstructuredGrid (.vtu) of the particles as points, with radius, velocity, angular
+// velocity, displacement since the start, accumulated rotation, id and material.
+std::string particles_vtu(const ParticleStore& p);
+
+// A .vtu of the walls: planes and rectangles as quads, cylinders as a ring of quads, sized to
+// `extent` (m) where the wall itself is unbounded.
+std::string walls_vtu(const std::vector<Wall>& walls, double extent);
+
+// The ParaView collection index (.pvd) listing (time, file) pairs.
+std::string pvd_index(const std::vector<std::pair<double, std::string>>& snapshots);
+
+}  // namespace grainlab

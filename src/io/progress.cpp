@@ -1,0 +1,41 @@
+#include "io/progress.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace grainlab {
+
+Progress::Progress(std::string label, bool quiet, double interval_s)
+    : label_(std::move(label)),
+      quiet_(quiet),
+      tty_(isatty(fileno(stderr)) != 0),
+      interval_s_(tty_ ? 0.25 : interval_s),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+void Progress::update(double fraction, const std::string& detail) {
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  const std::string text = fmt::format("{}: {:5.1f} %  {}  elapsed {:.0f} s  ETA {:.0f} s", label_,
+                                       100.0 * fraction, detail, elapsed, eta);
+  if (tty_) fmt::print(stderr, "\r{:<100}", text);
+  else fmt::print(stderr, "{}\n", text);
+  std::fflush(stderr);
+}
+
+void Progress::finish(const std::string& detail) {
+  if (quiet_) return;
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const std::string text = fmt::format("{}: done, {}  wall time {:.1f} s", label_, detail, elapsed);
+  if (tty_) fmt::print(stderr, "\r{:<100}\n", text);
+  else fmt::print(stderr, "{}\n", text);
+}
+
+}  // namespace grainlab

@@ -1,0 +1,24 @@
+// Progress output for long runs: percent, simulated time and ETA on stderr. On a terminal the
+// line redraws in place; otherwise a plain line every `interval_s` seconds of wall time.
+#pragma once
+
+#include <chrono>
+#include <string>
+
+namespace grainlab {
+
+class Progress {
+ public:
+  Progress(std::string label, bool quiet, double interval_s = 5.0);
+  // fraction in [0, 1]; `detail` e.g. "t = 1.2e-3 s" or "axial strain 4.1 %".
+  void update(double fraction, const std::string& detail);
+  void finish(const std::string& detail);
+
+ private:
+  std::string label_;
+  bool quiet_, tty_;
+  double interval_s_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace grainlab

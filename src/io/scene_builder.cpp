@@ -1,0 +1,207 @@
+#include "io/scene_builder.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "contact/time_step.hpp"
+#include "core/random_insertion.hpp"
+#include "io/config_error.hpp"
+
+namespace grainlab {
+
+PairTable build_pair_table(const SceneConfig& c) {
+  PairTable table(c.materials);
+  for (const PairEntry& p : c.pairs) {
+    try {
+      table.set(p.material_a, p.material_b, p.properties);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(fmt::format("{} line {}: pair {}-{}: {}", c.file, p.line,
+                                    c.materials[p.material_a].name, c.materials[p.material_b].name,
+                                    e.what()));
+    }
+  }
+  return table;
+}
+
+ParticleStore build_particles(const SceneConfig& c) {
+  std::vector<Sphere> spheres;
+  std::vector<int> material, line;
+  std::vector<bool> fixed;
+  for (const ParticleEntry& p : c.particles) {
+    spheres.push_back({p.position, p.radius});
+    material.push_back(p.material);
+    line.push_back(p.line);
+    fixed.push_back(p.fixed);
+  }
+  std::mt19937_64 rng(c.seed);
+  for (const ParticleBatch& b : c.batches) {
+    InsertionRegion region;
+    region.cylinder = b.region == RegionShape::cylinder;
+    region.box_min = b.box_min;
+    region.box_max = b.box_max;
+    region.base = b.cylinder_base;
+    region.radius = b.cylinder_radius;
+    region.height = b.cylinder_height;
+    const long placed = insert_random_spheres(spheres, region, b.count, b.diameter_min, b.diameter_max, rng);
+    if (placed < b.count)
+      throw ConfigError(fmt::format(
+          "{} line {}: particles.count: only {} of {} particles fit in the region without overlap "
+          "(random insertion saturates near a solid fraction of 0.35): enlarge the region or "
+          "lower the count",
+          c.file, b.line, placed, b.count));
+    material.insert(material.end(), static_cast<size_t>(placed), b.material);
+    line.insert(line.end(), static_cast<size_t>(placed), b.line);
+    fixed.insert(fixed.end(), static_cast<size_t>(placed), false);
+  }
+  // Overlaps among explicit particles (generated ones never overlap): a prepared specimen carries
+  // overlaps of ~1e-5 of a radius, so only more than 1 % of the smaller radius is an error.
+  const size_t explicit_count = c.particles.size();
+  for (size_t i = 0; i < spheres.size(); ++i)
+    for (size_t j = i + 1; j < std::max(explicit_count, i + 1); ++j) {
+      const double gap = norm(spheres[j].centre - spheres[i].centre) - spheres[i].radius - spheres[j].radius;
+      if (-gap > 0.01 * std::min(spheres[i].radius, spheres[j].radius))
+        throw ConfigError(fmt::format(
+            "{} line {}: particle[{}] overlaps particle[{}] (line {}) by {:.3g} m, more than 1 % of "
+            "the smaller radius: move them apart",
+            c.file, line[j], j + 1, i + 1, line[i], -gap));
+    }
+  for (size_t i = 0; i < spheres.size(); ++i)
+    for (size_t w = 0; w < c.walls.size(); ++w)
+      if (!inside_wall(c.walls[w], spheres[i].centre))
+        throw ConfigError(fmt::format(
+            "{} line {}: particle {} at ({:.4g}, {:.4g}, {:.4g}) m lies outside wall[{}] '{}' (line "
+            "{}): particles must be on the side the wall's normal points to (inside a cylinder)",
+            c.file, line[i], i, spheres[i].centre.x, spheres[i].centre.y, spheres[i].centre.z, w + 1,
+            c.walls[w].name, c.wall_lines[w]));
+
+  ParticleStore store;
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    const Vec3 v = i < explicit_count ? c.particles[i].velocity : Vec3{};
+    const Vec3 w = i < explicit_count ? c.particles[i].angular_velocity : Vec3{};
+    store.add(static_cast<uint32_t>(i), material[i], spheres[i].radius,
+              *c.materials[material[i]].density, spheres[i].centre, v, w, fixed[i]);
+  }
+  // Batch velocities.
+  size_t k = explicit_count;
+  for (const ParticleBatch& b : c.batches)
+    for (long n = 0; n < b.count; ++n, ++k) store.velocity[k] = b.velocity;
+  return store;
+}
+
+namespace {
+
+double sphere_mass(double radius, double density) {
+  return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+}
+
+DerivedPair derive(const SceneConfig& c, const PairTable& table, int a, int b, double ra, double rb,
+                   bool wall) {
+  const PairParams& p = table(a, b);
+  DerivedPair d;
+  d.material_a = c.materials[a].name;
+  d.material_b = c.materials[b].name;
+  d.wall_pair = wall;
+  d.radius_a = ra;
+  d.radius_b = wall ? 0.0 : rb;
+  const double ma = sphere_mass(ra, *c.materials[a].density);
+  d.effective_radius = wall ? ra : ra * rb / (ra + rb);
+  d.effective_mass = wall ? ma : 1.0 / (1.0 / ma + 1.0 / sphere_mass(rb, *c.materials[b].density));
+  d.normal_stiffness = p.stiffness_per_radius * d.effective_radius;
+  d.sliding_stiffness = p.rns * d.normal_stiffness;
+  d.rolling_stiffness = 4.0 * d.effective_radius * d.effective_radius * d.sliding_stiffness;
+  d.normal_damping = 2.0 * p.damping_ratio * std::sqrt(d.normal_stiffness * d.effective_mass);
+  d.sliding_damping = p.rzs * d.normal_damping;
+  d.damping_ratio = p.damping_ratio;
+  d.damping_ratio_textbook = p.textbook_damping_ratio;
+  d.restitution = p.restitution;
+  d.friction = p.friction;
+  d.arf = p.arf;
+  const double overlap = 0.005 * d.effective_radius;
+  d.rolling_moment_per_force_at_half_percent =
+      p.arf * (wall ? std::sqrt(ra * ra - (ra - overlap) * (ra - overlap))
+                    : std::sqrt(std::max(0.0, d.effective_radius * 2.0 * overlap)));
+  // t_c = pi / omega_d with the textbook zeta; equals Eq. 11 for equal spheres and on a wall.
+  const double l = std::log(p.restitution);
+  d.collision_duration = std::sqrt((std::numbers::pi * std::numbers::pi + l * l) *
+                                   d.effective_mass / d.normal_stiffness);
+  return d;
+}
+
+}  // namespace
+
+std::vector<DerivedPair> derive_pairs(const SceneConfig& c, const PairTable& table,
+                                      const ParticleStore& particles) {
+  // Smallest radius of each particle material in use.
+  std::vector<double> min_radius(c.materials.size(), 0.0);
+  for (size_t i = 0; i < particles.size(); ++i) {
+    double& r = min_radius[particles.material[i]];
+    r = r == 0.0 ? particles.radius[i] : std::min(r, particles.radius[i]);
+  }
+  std::vector<DerivedPair> out;
+  auto require = [&](int a, int b) {
+    if (!table(a, b).defined)
+      throw ConfigError(fmt::format(
+          "{}: no [[pair]] for materials \"{}\" and \"{}\", which touch in this scene: add "
+          "[[pair]] materials = [\"{}\", \"{}\"] with restitution and friction",
+          c.file, c.materials[a].name, c.materials[b].name, c.materials[a].name, c.materials[b].name));
+  };
+  const int m = static_cast<int>(c.materials.size());
+  for (int a = 0; a < m; ++a) {
+    if (min_radius[a] == 0.0) continue;
+    for (int b = a; b < m; ++b) {
+      if (min_radius[b] == 0.0) continue;
+      // A material alone in the scene (one bead) cannot touch itself: its pair is reported when
+      // defined but not required.
+      const bool can_touch = a != b || std::count(particles.material.begin(), particles.material.end(), a) > 1;
+      if (!can_touch && !table(a, b).defined) continue;
+      if (can_touch) require(a, b);
+      out.push_back(derive(c, table, a, b, min_radius[a], min_radius[b], false));
+    }
+    std::vector<bool> seen(m, false);
+    for (const Wall& w : c.walls) {
+      if (seen[w.material]) continue;
+      seen[w.material] = true;
+      require(a, w.material);
+      out.push_back(derive(c, table, a, w.material, min_radius[a], 0.0, true));
+    }
+  }
+  return out;
+}
+
+TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedPair>& pairs) {
+  TimeStepChoice t;
+  t.collision_duration = INFINITY;
+  for (const DerivedPair& p : pairs) t.collision_duration = std::min(t.collision_duration, p.collision_duration);
+  if (c.time_step) {
+    t.time_step = *c.time_step;
+    t.explicit_dt = true;
+    t.dt_fraction = std::isfinite(t.collision_duration) ? t.time_step / t.collision_duration : 0.0;
+  } else {
+    if (!std::isfinite(t.collision_duration))
+      throw ConfigError(fmt::format("{}: simulation: no contacts possible, so no collision duration "
+                                    "to derive dt from: set simulation.dt",
+                                    c.file));
+    t.dt_fraction = c.dt_fraction;
+    t.time_step = c.dt_fraction * t.collision_duration;
+  }
+  return t;
+}
+
+SimulationSettings simulation_settings(const SceneConfig& c, const TimeStepChoice& dt,
+                                       const ParticleStore& particles) {
+  SimulationSettings s;
+  s.time_step = dt.time_step;
+  s.dt_fraction = dt.dt_fraction;
+  s.gravity = c.gravity;
+  double max_radius = 0.0;
+  for (double r : particles.radius) max_radius = std::max(max_radius, r);
+  s.skin = c.skin ? *c.skin : 0.2 * max_radius;  // a tenth of the largest diameter
+  s.max_speed = c.max_speed;
+  return s;
+}
+
+}  // namespace grainlab

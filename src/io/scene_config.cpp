@@ -1,0 +1,292 @@
+#include "io/scene_config.hpp"
+
+#include <fmt/format.h>
+
+#include "io/toml_reader.hpp"
+
+namespace grainlab {
+namespace {
+
+const toml::array* array_of_tables(const toml::table& root, const std::string& key,
+                                   const std::string& file) {
+  const toml::node* n = root.get(key);
+  if (!n) return nullptr;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables())
+    throw ConfigError(fmt::format("{} line {}: {}: expected [[{}]] tables", file,
+                                  n->source().begin.line, key, key));
+  return a;
+}
+
+int material_index(TableReader& r, const std::string& key, const std::string& name,
+                   const std::vector<Material>& materials) {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == name) return static_cast<int>(i);
+  std::string known;
+  for (const Material& m : materials) known += (known.empty() ? "" : ", ") + m.name;
+  r.fail(key, fmt::format("unknown material \"{}\" (defined materials: {})", name,
+                          known.empty() ? "none" : known));
+}
+
+void read_simulation(const toml::table& root, SceneConfig& c) {
+  const toml::node* n = root.get("simulation");
+  if (!n || !n->is_table())
+    throw ConfigError(fmt::format("{}: [simulation] table missing (required: duration)", c.file));
+  TableReader r(*n->as_table(), c.file, "simulation");
+  c.duration = r.number("duration", Quantity::time);
+  if (!(c.duration > 0.0)) r.fail("duration", "expected a duration > 0 s");
+  c.time_step = r.optional_number("dt", Quantity::time);
+  if (c.time_step && !(*c.time_step > 0.0)) r.fail("dt", "expected a time step > 0 s");
+  if (c.time_step && r.has("dt_fraction")) r.fail("dt", "give either dt or dt_fraction, not both");
+  c.dt_fraction = r.number_or("dt_fraction", Quantity::dimensionless, 0.1);
+  if (!(c.dt_fraction > 0.0 && c.dt_fraction <= 0.5))
+    r.fail("dt_fraction", "expected a fraction of the collision duration in (0, 0.5] (default 0.1)");
+  c.gravity = r.vec3_or("gravity", Quantity::acceleration, {});
+  const long seed = r.integer_or("seed", 1);
+  if (seed < 0) r.fail("seed", "expected an integer >= 0");
+  c.seed = static_cast<uint64_t>(seed);
+  c.skin = r.optional_number("skin", Quantity::length);
+  if (c.skin && !(*c.skin > 0.0)) r.fail("skin", "expected a Verlet skin > 0 m");
+  c.max_speed = r.number_or("max_speed", Quantity::velocity, 100.0);
+  if (!(c.max_speed > 0.0)) r.fail("max_speed", "expected a speed > 0 m/s");
+  r.finish();
+}
+
+void read_materials(const toml::table& root, SceneConfig& c) {
+  const toml::array* a = array_of_tables(root, "material", c.file);
+  if (!a || a->empty()) throw ConfigError(fmt::format("{}: no [[material]] defined", c.file));
+  for (size_t k = 0; k < a->size(); ++k) {
+    TableReader r(*a->get(k)->as_table(), c.file, fmt::format("material[{}]", k + 1));
+    Material m;
+    m.name = r.string("name");
+    for (const Material& other : c.materials)
+      if (other.name == m.name) r.fail("name", fmt::format("material \"{}\" defined twice", m.name));
+    m.youngs_modulus = r.optional_number("youngs_modulus", Quantity::pressure);
+    if (m.youngs_modulus && !(*m.youngs_modulus > 0.0))
+      r.fail("youngs_modulus", "expected Young's modulus E > 0 Pa");
+    m.poisson_ratio = r.optional_number("poisson_ratio", Quantity::dimensionless);
+    if (m.poisson_ratio && !(*m.poisson_ratio > -1.0 && *m.poisson_ratio < 0.5))
+      r.fail("poisson_ratio", "expected a Poisson ratio in (-1, 0.5)");
+    m.density = r.optional_number("density", Quantity::density);
+    if (m.density && !(*m.density > 0.0)) r.fail("density", "expected a density > 0 kg/m^3");
+    r.finish();
+    c.materials.push_back(m);
+  }
+}
+
+void read_pairs(const toml::table& root, SceneConfig& c) {
+  const toml::array* a = array_of_tables(root, "pair", c.file);
+  if (!a) return;
+  for (size_t k = 0; k < a->size(); ++k) {
+    TableReader r(*a->get(k)->as_table(), c.file, fmt::format("pair[{}]", k + 1));
+    PairEntry p;
+    p.line = r.line_of("");
+    const auto names = r.strings("materials", 2);
+    p.material_a = material_index(r, "materials", names[0], c.materials);
+    p.material_b = material_index(r, "materials", names[1], c.materials);
+    PairProperties& q = p.properties;
+    q.restitution = r.number("restitution", Quantity::dimensionless);
+    if (!(q.restitution > 0.0 && q.restitution <= 1.0))
+      r.fail("restitution", fmt::format("expected a restitution coefficient e in (0, 1], got {}", q.restitution));
+    q.friction = r.number("friction", Quantity::dimensionless);
+    if (!(q.friction >= 0.0)) r.fail("friction", fmt::format("expected a friction coefficient >= 0, got {}", q.friction));
+    q.rns = r.number_or("rns", Quantity::dimensionless, 0.5);
+    if (!(q.rns > 0.0)) r.fail("rns", "expected k_s/k_n > 0");
+    q.rzs = r.number_or("rzs", Quantity::dimensionless, 0.0);
+    if (!(q.rzs >= 0.0)) r.fail("rzs", "expected c_s/c_n >= 0");
+    q.arf = r.number_or("arf", Quantity::dimensionless, 0.0);
+    if (!(q.arf >= 0.0)) r.fail("arf", "expected a rolling friction coefficient >= 0");
+    q.rolling_damping_ratio = r.number_or("rolling_damping_ratio", Quantity::dimensionless, -1.0);
+    if (r.has("rolling_damping_ratio") && !(q.rolling_damping_ratio >= 0.0))
+      r.fail("rolling_damping_ratio", "expected a damping ratio >= 0");
+    q.twisting_friction = r.number_or("twisting_friction", Quantity::dimensionless, 0.0);
+    if (!(q.twisting_friction >= 0.0)) r.fail("twisting_friction", "expected a coefficient >= 0");
+    q.rolling_force_stiffness_ratio = r.number_or("rolling_force_stiffness_ratio", Quantity::dimensionless, 0.0);
+    q.rolling_force_friction = r.number_or("rolling_force_friction", Quantity::dimensionless, 0.0);
+    if (!(q.rolling_force_stiffness_ratio >= 0.0 && q.rolling_force_friction >= 0.0))
+      r.fail("rolling_force_stiffness_ratio", "expected rolling force parameters >= 0");
+    q.youngs_modulus = r.optional_number("youngs_modulus", Quantity::pressure);
+    if (q.youngs_modulus && !(*q.youngs_modulus > 0.0))
+      r.fail("youngs_modulus", "expected Young's modulus E > 0 Pa");
+    r.finish();
+    for (const PairEntry& other : c.pairs)
+      if ((other.material_a == p.material_a && other.material_b == p.material_b) ||
+          (other.material_a == p.material_b && other.material_b == p.material_a))
+        r.fail("materials", fmt::format("pair {}-{} defined twice (first at line {})", names[0],
+                                        names[1], other.line));
+    c.pairs.push_back(p);
+  }
+}
+
+void require_particle_material(TableReader& r, const Material& m) {
+  if (!m.density)
+    r.fail("material", fmt::format("material \"{}\" has no density; particles need one", m.name));
+}
+
+void read_particles(const toml::table& root, SceneConfig& c) {
+  if (const toml::array* a = array_of_tables(root, "particle", c.file)) {
+    for (size_t k = 0; k < a->size(); ++k) {
+      TableReader r(*a->get(k)->as_table(), c.file, fmt::format("particle[{}]", k + 1));
+      ParticleEntry p;
+      p.line = r.line_of("");
+      p.material = material_index(r, "material", r.string("material"), c.materials);
+      require_particle_material(r, c.materials[p.material]);
+      if (r.has("diameter") == r.has("radius")) r.fail("radius", "give exactly one of radius or diameter");
+      p.radius = r.has("radius") ? r.number("radius", Quantity::length)
+                                 : 0.5 * r.number("diameter", Quantity::length);
+      if (!(p.radius > 0.0)) r.fail(r.has("radius") ? "radius" : "diameter", "expected a size > 0 m");
+      p.position = r.vec3("position", Quantity::length);
+      p.velocity = r.vec3_or("velocity", Quantity::velocity, {});
+      p.angular_velocity = r.vec3_or("angular_velocity", Quantity::angular_velocity, {});
+      p.fixed = r.boolean_or("fixed", false);
+      r.finish();
+      c.particles.push_back(p);
+    }
+  }
+  if (const toml::array* a = array_of_tables(root, "particles", c.file)) {
+    for (size_t k = 0; k < a->size(); ++k) {
+      TableReader r(*a->get(k)->as_table(), c.file, fmt::format("particles[{}]", k + 1));
+      ParticleBatch b;
+      b.line = r.line_of("");
+      b.material = material_index(r, "material", r.string("material"), c.materials);
+      require_particle_material(r, c.materials[b.material]);
+      b.count = r.integer("count");
+      if (b.count < 1) r.fail("count", "expected a particle count >= 1");
+      if (r.has("diameter")) {
+        b.diameter_min = b.diameter_max = r.number("diameter", Quantity::length);
+      } else {
+        b.diameter_min = r.number("diameter_min", Quantity::length);
+        b.diameter_max = r.number("diameter_max", Quantity::length);
+      }
+      if (!(b.diameter_min > 0.0 && b.diameter_max >= b.diameter_min))
+        r.fail("diameter", "expected diameters > 0 m with diameter_min <= diameter_max");
+      b.velocity = r.vec3_or("velocity", Quantity::velocity, {});
+      const toml::node* region = r.node("region");
+      if (!region || !region->is_table())
+        r.fail("region", "expected an inline table, e.g. {type = \"box\", min = [..], max = [..]}");
+      TableReader g(*region->as_table(), c.file, fmt::format("particles[{}].region", k + 1));
+      const std::string type = g.string("type");
+      if (type == "box") {
+        b.region = RegionShape::box;
+        b.box_min = g.vec3("min", Quantity::length);
+        b.box_max = g.vec3("max", Quantity::length);
+        for (int d = 0; d < 3; ++d)
+          if (!(b.box_max[d] - b.box_min[d] >= b.diameter_max))
+            g.fail("max", "the box must be at least one particle diameter wide along every axis");
+      } else if (type == "cylinder") {
+        b.region = RegionShape::cylinder;
+        b.cylinder_base = g.vec3("base", Quantity::length);
+        b.cylinder_radius = g.number("radius", Quantity::length);
+        b.cylinder_height = g.number("height", Quantity::length);
+        if (!(b.cylinder_radius >= 0.5 * b.diameter_max && b.cylinder_height >= b.diameter_max))
+          g.fail("radius", "the cylinder must hold at least one particle");
+      } else {
+        g.fail("type", fmt::format("expected \"box\" or \"cylinder\", got \"{}\"", type));
+      }
+      g.finish();
+      r.finish();
+      c.batches.push_back(b);
+    }
+  }
+  if (c.particles.empty() && c.batches.empty())
+    throw ConfigError(fmt::format("{}: no particles: add [[particle]] or [[particles]] entries", c.file));
+}
+
+void read_walls(const toml::table& root, SceneConfig& c) {
+  const toml::array* a = array_of_tables(root, "wall", c.file);
+  if (!a) return;
+  for (size_t k = 0; k < a->size(); ++k) {
+    TableReader r(*a->get(k)->as_table(), c.file, fmt::format("wall[{}]", k + 1));
+    Wall w;
+    w.name = r.string_or("name", fmt::format("wall{}", k + 1));
+    const std::string type = r.string("type");
+    w.material = material_index(r, "material", r.string("material"), c.materials);
+    w.point = r.vec3("point", Quantity::length);
+    w.velocity = r.vec3_or("velocity", Quantity::velocity, {});
+    if (type == "plane") {
+      w.shape = WallShape::plane;
+      w.normal = r.vec3("normal", Quantity::dimensionless);
+    } else if (type == "rectangle") {
+      w.shape = WallShape::rectangle;
+      w.normal = r.vec3("normal", Quantity::dimensionless);
+      w.axis_u = r.vec3_or("axis_u", Quantity::dimensionless, {});
+      const auto size = r.numbers("size", Quantity::length, 2);
+      w.half_u = 0.5 * size[0];
+      w.half_v = 0.5 * size[1];
+    } else if (type == "cylinder") {
+      w.shape = WallShape::cylinder;
+      w.axis = r.vec3_or("axis", Quantity::dimensionless, {0.0, 0.0, 1.0});
+      w.radius = r.number("radius", Quantity::length);
+    } else {
+      r.fail("type", fmt::format("expected \"plane\", \"rectangle\" or \"cylinder\", got \"{}\"", type));
+    }
+    try {
+      finish_wall_geometry(w);
+    } catch (const std::invalid_argument& e) {
+      r.fail(type == "cylinder" ? "radius" : "normal", e.what());
+    }
+    r.finish();
+    c.walls.push_back(w);
+    c.wall_lines.push_back(r.line_of(""));
+  }
+  if (c.walls.size() > 60000) throw ConfigError(fmt::format("{}: too many walls", c.file));
+}
+
+void read_output(const toml::table& root, SceneConfig& c) {
+  c.output.interval = c.duration / 100.0;
+  c.output.vtk_interval = 0.0;
+  const toml::node* n = root.get("output");
+  if (n) {
+    if (!n->is_table()) throw ConfigError(fmt::format("{}: [output] must be a table", c.file));
+    TableReader r(*n->as_table(), c.file, "output");
+    c.output.interval = r.number_or("interval", Quantity::time, c.output.interval);
+    if (!(c.output.interval > 0.0)) r.fail("interval", "expected an output interval > 0 s");
+    if (const toml::node* t = r.node("trace")) {
+      if (t->is_string() && (*t->value<std::string>() == "all" || *t->value<std::string>() == "none")) {
+        c.output.trace_all = *t->value<std::string>() == "all";
+      } else if (const toml::array* ids = t->as_array()) {
+        c.output.trace_all = false;
+        for (const toml::node& id : *ids) {
+          if (!id.is_integer() || *id.value<int64_t>() < 0)
+            r.fail("trace", "expected \"all\", \"none\" or a list of particle ids (integers >= 0)");
+          c.output.trace_ids.push_back(static_cast<uint32_t>(*id.value<int64_t>()));
+        }
+      } else {
+        r.fail("trace", "expected \"all\", \"none\" or a list of particle ids");
+      }
+    }
+    c.output.vtk = r.boolean_or("vtk", false);
+    c.output.vtk_interval = r.number_or("vtk_interval", Quantity::time, 0.0);
+    if (r.has("vtk_interval") && !(c.output.vtk_interval > 0.0))
+      r.fail("vtk_interval", "expected an interval > 0 s");
+    r.finish();
+  }
+  if (c.output.vtk_interval == 0.0) c.output.vtk_interval = c.output.interval;
+}
+
+}  // namespace
+
+SceneConfig load_scene(const std::string& path) {
+  SceneConfig c;
+  c.file = path;
+  c.source = parse_toml_file(path);
+  const toml::table& root = c.source;
+  for (const auto& [key, value] : root) {
+    static const char* known[] = {"simulation", "material", "pair", "particle", "particles", "wall", "output"};
+    bool ok = false;
+    for (const char* k : known) ok = ok || key.str() == k;
+    if (!ok)
+      throw ConfigError(fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
+                                    "material, pair, particle, particles, wall, output)",
+                                    path, value.source().begin.line, key.str()));
+  }
+  read_simulation(root, c);
+  read_materials(root, c);
+  read_pairs(root, c);
+  read_particles(root, c);
+  read_walls(root, c);
+  read_output(root, c);
+  return c;
+}
+
+}  // namespace grainlab

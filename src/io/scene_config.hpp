@@ -1,0 +1,77 @@
+// The scene configuration (`grainlab run SCENE.toml`), read and validated from TOML. The schema
+// is documented in docs/scene-schema.md. Everything is SI after reading.
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/material.hpp"
+#include "core/vec3.hpp"
+#include "geometry/wall.hpp"
+
+namespace grainlab {
+
+struct PairEntry {
+  int material_a = 0, material_b = 0;
+  PairProperties properties;
+  int line = 0;
+};
+
+struct ParticleEntry {
+  int material = 0;
+  double radius = 0.0;
+  Vec3 position, velocity, angular_velocity;
+  bool fixed = false;
+  int line = 0;
+};
+
+enum class RegionShape { box, cylinder };
+
+// N random non-overlapping spheres, diameters uniform in [diameter_min, diameter_max].
+struct ParticleBatch {
+  int material = 0;
+  long count = 0;
+  double diameter_min = 0.0, diameter_max = 0.0;
+  RegionShape region = RegionShape::box;
+  Vec3 box_min, box_max;          // box
+  Vec3 cylinder_base;             // cylinder: centre of the bottom face, axis along z
+  double cylinder_radius = 0.0, cylinder_height = 0.0;
+  Vec3 velocity;
+  int line = 0;
+};
+
+struct OutputSettings {
+  double interval = 0.0;           // s
+  bool trace_all = true;
+  std::vector<uint32_t> trace_ids;  // when not trace_all
+  bool vtk = false;
+  double vtk_interval = 0.0;       // s
+};
+
+struct SceneConfig {
+  std::string file;
+  double duration = 0.0;                 // s
+  std::optional<double> time_step;       // s, explicit dt
+  double dt_fraction = 0.1;              // dt = dt_fraction * t_c
+  Vec3 gravity;                          // m/s^2
+  uint64_t seed = 1;
+  std::optional<double> skin;            // m
+  double max_speed = 100.0;              // m/s
+  std::vector<Material> materials;
+  std::vector<PairEntry> pairs;
+  std::vector<ParticleEntry> particles;
+  std::vector<ParticleBatch> batches;
+  std::vector<Wall> walls;
+  std::vector<int> wall_lines;
+  OutputSettings output;
+  toml::table source;                    // the file as read, echoed into summary.json
+};
+
+// Reads and validates a scene file; throws ConfigError naming file, line and key.
+SceneConfig load_scene(const std::string& path);
+
+}  // namespace grainlab

@@ -1,0 +1,115 @@
+// Each piece of the contact law in isolation, against values computed by hand.
+#include <gtest/gtest.h>
+
+#include "contact/contact_law.hpp"
+
+using namespace grainlab;
+
+TEST(NormalPiece, SpringPlusDashpotNeverTensile) {
+  const NormalParams p{1000.0, 2.0};
+  EXPECT_DOUBLE_EQ(normal_force(p, 0.01, 0.5), 1000.0 * 0.01 + 2.0 * 0.5);  // 11 N
+  EXPECT_DOUBLE_EQ(normal_force(p, 0.001, -1.0), 0.0);  // 1 - 2 < 0: clamped, not -1 N
+}
+
+TEST(SlidingPiece, ElasticThenCoulombSlip) {
+  const SlidingParams p{1000.0, 0.0, 0.5};
+  SlidingHistory h;
+  // stick: U_s = 0.001 m, F = k_s U_s = 1 N < mu F_n = 5 N
+  Vec3 f = sliding_force(p, {0.001, 0.0, 0.0}, 10.0, 1.0, h);
+  EXPECT_DOUBLE_EQ(f.x, 1.0);
+  EXPECT_DOUBLE_EQ(h.spring.x, 0.001);
+  // slip: trial 1000 * 0.011 = 11 N > 5 N: force on the cap, spring shortened to 5/1000 m
+  f = sliding_force(p, {0.01, 0.0, 0.0}, 10.0, 1.0, h);
+  EXPECT_DOUBLE_EQ(f.x, 5.0);
+  EXPECT_DOUBLE_EQ(h.spring.x, 0.005);
+  // no normal force: no friction, and the spring is emptied
+  f = sliding_force(p, {0.0, 0.0, 0.0}, 0.0, 1.0, h);
+  EXPECT_DOUBLE_EQ(norm(f), 0.0);
+  EXPECT_DOUBLE_EQ(norm(h.spring), 0.0);
+}
+
+TEST(SlidingPiece, DashpotCountsTowardsTheCap) {
+  const SlidingParams p{1000.0, 100.0, 0.5};
+  SlidingHistory h;
+  // trial: k_s * 0.001 + c_s * 0.01 = 1 + 1 = 2 N (below 5 N cap)
+  const Vec3 f = sliding_force(p, {0.01, 0.0, 0.0}, 10.0, 0.1, h);
+  EXPECT_DOUBLE_EQ(f.x, 2.0);
+  // at slip the spring keeps (F - c v)/k
+  SlidingHistory g;
+  const Vec3 s = sliding_force(p, {0.04, 0.0, 0.0}, 10.0, 0.1, g);  // trial 4 + 4 = 8 N
+  EXPECT_DOUBLE_EQ(s.x, 5.0);
+  EXPECT_DOUBLE_EQ(g.spring.x, (5.0 - 4.0) / 1000.0);
+}
+
+TEST(SpringSlider, HistoryTurnsIntoNewTangentPlaneKeepingLength) {
+  Vec3 h{3.0, 0.0, 4.0};  // length 5, not in the plane of n = z
+  keep_in_tangent_plane(h, {0.0, 0.0, 1.0});
+  EXPECT_DOUBLE_EQ(h.x, 5.0);
+  EXPECT_DOUBLE_EQ(h.z, 0.0);
+}
+
+TEST(RollingPiece, SpringSliderOnRelativeRotation) {
+  const RollingParams p{2.0, 0.0, 1e-4};  // k_theta 2 N m/rad, mu_theta 0.1 mm
+  RollingHistory h;
+  const Vec3 rate = rolling_rate({0.0, 0.01, 0.3}, {0.0, 0.0, 1.0});  // spin about n is not rolling
+  EXPECT_DOUBLE_EQ(rate.z, 0.0);
+  Vec3 m = rolling_moment(p, rate, 100.0, 0.1, h);  // theta = 1e-3 rad: M = 2e-3 < 1e-2 N m
+  EXPECT_DOUBLE_EQ(m.y, 2e-3);
+  m = rolling_moment(p, {0.0, 1.0, 0.0}, 100.0, 0.1, h);  // trial 0.202 > 0.01: capped
+  EXPECT_DOUBLE_EQ(m.y, 1e-2);
+  EXPECT_DOUBLE_EQ(h.angle.y, 5e-3);
+}
+
+TEST(RollingPiece, ContactCircleRadius) {
+  // Two unit spheres at distance 1.6: circle radius sqrt(1 - 0.8^2) = 0.6
+  EXPECT_NEAR(contact_circle_radius(1.0, 1.0, 1.6), 0.6, 1e-15);
+  // Sphere r = 1 pressed 0.2 into a wall: sqrt(1 - 0.8^2) = 0.6
+  EXPECT_NEAR(contact_circle_radius_on_wall(1.0, 0.2), 0.6, 1e-15);
+}
+
+TEST(TwistingPiece, CapsAboutTheNormal) {
+  const TwistingParams p{1.0, 0.0, 1e-3};
+  TwistingHistory h;
+  Vec3 m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, 0.5}, 10.0, 0.01, h);  // 5e-3 < 1e-2
+  EXPECT_DOUBLE_EQ(m.z, 5e-3);
+  m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, -5.0}, 10.0, 0.01, h);  // -4.5e-2 capped
+  EXPECT_DOUBLE_EQ(m.z, -1e-2);
+  EXPECT_DOUBLE_EQ(h.angle, -1e-2);
+}
+
+TEST(RollingForcePiece, ResistsRollingDisplacement) {
+  const RollingForceParams p{100.0, 0.1};
+  RollingForceHistory h;
+  // w_rel = (0, 1, 0), n = z: rate = r* (w x n) = 0.5 * (1, 0, 0)
+  const Vec3 f = rolling_force(p, {0, 0, 1}, {0.0, 1.0, 0.0}, 0.5, 100.0, 0.01, h);
+  EXPECT_DOUBLE_EQ(f.x, 100.0 * 0.005);
+}
+
+TEST(ContactLaw, HeadOnPairForceAndTorques) {
+  // Two spheres touching along x with overlap 1e-5 m, B sliding in +y relative to A.
+  PairParams pair;
+  pair.stiffness_per_radius = 1e8;
+  pair.damping_ratio = 0.1;
+  pair.rns = 0.5;
+  pair.friction = 0.3;
+  ContactKinematics k;
+  k.normal = {1.0, 0.0, 0.0};
+  k.overlap = 1e-5;
+  k.effective_radius = 5e-4;
+  k.effective_mass = 1e-5;
+  set_relative_velocity(k, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0}, 1e-3);
+  EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
+  Vec3 spring;
+  const double dt = 1e-7;
+  const ContactResponse r = contact_response<false, false, false>(pair, k, 1e-3, 1e-3, 0.0, 0.0, dt,
+                                                                   {&spring, nullptr, nullptr, nullptr});
+  const double kn = 1e8 * 5e-4, cn = 2 * 0.1 * std::sqrt(kn * 1e-5);
+  const double fn = kn * 1e-5 + cn * 0.01;
+  EXPECT_DOUBLE_EQ(r.normal_force, fn);
+  EXPECT_DOUBLE_EQ(r.force_on_a.x, -fn);  // A is pushed away from B
+  const double ft = 0.5 * kn * 1e-3 * dt;   // stick: k_s * v_t * dt, along +y (B drags A)
+  EXPECT_NEAR(r.force_on_a.y, ft, 1e-15);
+  // torque on A = lever n x F_t = 1e-3 * (x cross y) * ft = +z
+  EXPECT_NEAR(r.torque_on_a.z, 1e-3 * ft, 1e-18);
+  EXPECT_NEAR(r.torque_on_b.z, 1e-3 * ft, 1e-18);
+}
