@@ -11,13 +11,25 @@
 namespace grainlab {
 namespace {
 
+// Velocities for the dashpots. Velocity Verlet evaluates forces at the end of the step, when
+// only the half-step velocity v(t + dt/2) is known; a dashpot fed with it lags by half a step,
+// which is a first-order error in the dissipation (at dt = 0.1 t_c a single collision with
+// e = 0.5 rebounds with 0.46). Completing the kick with the last force,
+// v(t + dt) ~ v(t + dt/2) + dt/2 F(t)/m, makes it second order (docs/contact-model.md).
+inline Vec3 velocity_at_step_end(const ParticleStore& p, size_t i, double dt) {
+  return p.velocity[i] + (0.5 * dt * p.inverse_mass[i]) * p.force[i];
+}
+inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
+  return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
+}
+
 template <bool R, bool T, bool RF>
 double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt) {
   const long n = static_cast<long>(p.size());
   const int materials = table.material_count();
   const PairParams* params = &table(0, 0);
   double max_fraction = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_fraction)
+#pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i];
@@ -45,8 +57,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       k.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-      set_relative_velocity(k, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
-                            p.angular_velocity[j], lever_j);
+      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
+                            velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
       double inertia = 0.0, contact_radius = 0.0;
       if constexpr (R || T) {
         inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
@@ -72,7 +84,7 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
                    WallContacts& c, double dt) {
   const long n = static_cast<long>(p.size());
   double max_fraction = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_fraction)
+#pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     const double r = p.radius[i];
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
@@ -94,7 +106,8 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       k.effective_radius = r;
       k.effective_mass = 1.0 / p.inverse_mass[i];
       const double lever = g.gap;  // contact point on the wall surface
-      set_relative_velocity(k, p.velocity[i], p.angular_velocity[i], lever, w.velocity, Vec3{}, 0.0);
+      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
+                            w.velocity, Vec3{}, 0.0);
       double inertia = 0.0, contact_radius = 0.0;
       if constexpr (R || T) {
         inertia = 1.0 / p.inverse_inertia[i];

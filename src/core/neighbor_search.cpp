@@ -14,7 +14,7 @@ bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wal
     if (norm2(walls[w].point - wall_point_at_build_[w]) > limit2) return true;
   const long n = static_cast<long>(p.size());
   int moved = 0;
-#pragma omp parallel for schedule(static) reduction(| : moved)
+#pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i)
     moved |= norm2(p.position[i] - position_at_build_[i]) > limit2 ? 1 : 0;
   return moved != 0;
@@ -107,7 +107,7 @@ void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) co
   };
 
   pairs.row_start.assign(static_cast<size_t>(n) + 1, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     uint32_t count = 0;
     for_each_partner(i, [&](uint32_t) { ++count; });
@@ -115,7 +115,7 @@ void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) co
   }
   std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
   pairs.partner.resize(pairs.row_start[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     uint32_t k = pairs.row_start[i];
     for_each_partner(i, [&](uint32_t j) { pairs.partner[k++] = j; });

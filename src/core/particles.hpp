@@ -12,6 +12,10 @@
 
 namespace grainlab {
 
+// Below this many particles a loop runs on one thread: the cost of waking the team would exceed
+// the work. (The results are the same either way.)
+inline constexpr long parallel_threshold = 512;
+
 struct ParticleStore {
   // hot: 24 B per Vec3 field, 8 B per scalar, 4 B per index -> 172 B per particle
   std::vector<Vec3> position;          // m

@@ -36,7 +36,7 @@ void Simulation::kick_and_drift() {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
@@ -51,7 +51,7 @@ void Simulation::half_kick() {
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
   double max_speed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_speed2)
+#pragma omp parallel for schedule(static) reduction(max : max_speed2) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
@@ -76,7 +76,7 @@ void Simulation::gather() {
   const WallContacts& wc = wall_contacts_;
   const Vec3 g = settings_.gravity;
   const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
     Vec3 t;
