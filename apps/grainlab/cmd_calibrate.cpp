@@ -61,7 +61,8 @@ void add_common(CLI::App* sub, CommonOptions& o) {
                   "the bead's material name in the [[pair]] entries")
       ->capture_default_str();
   sub->add_option("--rename", o.rename,
-                  "FROM=TO: call the CSV material FROM by the scene's name TO (repeatable)");
+                  "FROM=TO: call the CSV material FROM by the scene's name TO (repeatable)")
+      ->allow_extra_args(false);
   sub->add_option("--level", o.level, "confidence level of the intervals")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 0.9999));

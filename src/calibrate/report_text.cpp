@@ -22,6 +22,11 @@ std::string interval(const ConfidenceInterval& ci, int digits = 4) {
   return fmt::format("[{}, {}]", num(ci.low, digits), num(ci.high, digits));
 }
 
+// " + 0.00317 V" / " - 0.00317 V": a polynomial term with its sign spaced out.
+std::string term(double c, const char* power) {
+  return fmt::format(" {} {:.4g}{}", c < 0 ? '-' : '+', std::abs(c), power);
+}
+
 std::string percent(double level) {
   return fmt::format("{:g} %", 100.0 * level);
 }
@@ -37,8 +42,8 @@ std::string estimate_line(const char* name, const Estimate& e, const char* unit,
 std::string restitution_text(const RestitutionAnalysis& a) {
   const double level = a.materials.empty() ? 0.95 : a.materials.front().ci.level;
   std::string out = fmt::format(
-      "Restitution coefficients from {} (flat-throw test, e = sqrt(h/H) per throw;\n"
-      "{} confidence interval of the mean, Student t with n - 1 degrees of freedom)\n\n",
+      "Restitution coefficients from {}\n(flat-throw test, e = sqrt(h/H) per throw; "
+      "{} confidence interval of the mean,\nStudent t with n - 1 degrees of freedom)\n\n",
       a.source, percent(level));
   TextTable t({"material", "n", "e mean", "sd", "s.e.", fmt::format("{} CI", percent(level)),
                "e min", "e max"});
@@ -59,8 +64,8 @@ std::string restitution_text(const RestitutionAnalysis& a) {
 
 std::string trajectory_text(const TrajectoryResult& r) {
   std::string out = fmt::format(
-      "Restitution from the tracked trajectory {} (free-flight parabolas before and after the "
-      "impact,\nleast squares with {} g; {} confidence intervals, Student t with {} degrees of "
+      "Restitution from the tracked trajectory {}\n(free-flight parabolas before and after the "
+      "impact, least squares with {} g;\n{} confidence intervals, Student t with {} degrees of "
       "freedom)\n\n",
       r.source, r.gravity_fitted ? "a shared fitted" : "a fixed", percent(r.e_velocity.ci.level),
       r.dof);
@@ -89,9 +94,9 @@ std::string friction_text(const FrictionAnalysis& a) {
   const double level = a.options.level;
   const double v_b = a.options.breakpoint_mm_per_min;
   std::string out = fmt::format(
-      "Friction coefficients from {} (sliding-friction test; mu = slope of the F-P line\n"
-      "through the origin at each speed; {} confidence intervals, Student t; R^2 centred;\n"
-      "the free-intercept line F = slope P + F0 is a check, '*' = F0 significant)\n\n",
+      "Friction coefficients from {}\n(sliding-friction test; mu = slope of the F-P line "
+      "through the origin at each speed;\n{} confidence intervals, Student t; R^2 centred; "
+      "the free-intercept\nline F = slope P + F0 is a check, '*' = F0 significant)\n\n",
       a.source, percent(level));
   TextTable t({"material", "V (mm/min)", "n", "mu", "s.e.", fmt::format("{} CI", percent(level)),
                "R^2", "free slope", "F0 (N)", "F0 s.e.", "p(F0)", ""});
@@ -115,11 +120,12 @@ std::string friction_text(const FrictionAnalysis& a) {
       continue;
     }
     const SpeedFit& f = *m.speed_fit;
-    out += fmt::format("  {}: mu = {:.6g} V^2 {:+.6g} V {:+.6g}   (V <= {:g} mm/min)\n", m.material,
-                       f.low_q2(), f.low_q1(), f.low_q0(), v_b);
+    // Written like the published Eq. 2 (coefficients of V in mm/min).
+    out += fmt::format("  {}: mu = {:.4f}{}{}   (V <= {:g} mm/min)\n", m.material, f.low_q0(),
+                       term(f.low_q1(), " V"), term(f.low_q2(), " V^2"), v_b);
     if (f.has_linear_part)
-      out += fmt::format("  {:{}}  mu = {:.6g} V {:+.6g}   (V > {:g} mm/min)\n", "",
-                         m.material.size(), f.high_slope(), f.high_intercept(), v_b);
+      out += fmt::format("  {:{}}  mu = {:.4f}{}   (V > {:g} mm/min)\n", "", m.material.size(),
+                         f.high_intercept(), term(f.high_slope(), " V"), v_b);
     out += fmt::format("  {:{}}  {} points, {} dof, residual sd {} N\n", "", m.material.size(), f.n,
                        f.dof, gnum(f.residual_sd_n, 3));
     if (f.dof == 0)

@@ -45,6 +45,7 @@ std::string TextTable::str(int indent) const {
         out += pad + cells[c];
       if (!last) out += "   ";
     }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
     return out + "\n";
   };
   std::string out = line(headers_);
