@@ -70,6 +70,7 @@ double parse_quantity(std::string_view text, Quantity q) {
     throw std::invalid_argument("expected a number with a unit, e.g. \"2 mm\", got \"" +
                                 std::string(text) + "\"");
   const std::string_view unit = trim(std::string_view(end, s.data() + s.size() - end));
+  if (unit.empty()) return value;  // a bare number is SI
   std::string accepted;
   for (const auto& [name, factor] : units_of(q)) {
     if (name == unit) return value * factor;

@@ -1,0 +1,321 @@
+#!/usr/bin/env python3
+"""End-to-end checks of the grainlab command line: bad input is refused with exit code 2, a
+message naming the file and the key, and nothing written; good input gives the documented files.
+
+usage: cli_checks.py GRAINLAB_EXE CHECK_NAME   (run by ctest, one check per test)
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+EXE = sys.argv[1]
+
+BASE = """
+[simulation]
+duration = 2e-5
+dt_fraction = 0.1
+gravity = [0.0, 0.0, -9.81]
+seed = 3
+
+[[material]]
+name = "glass"
+youngs_modulus = 46.2e9
+poisson_ratio = 0.245
+density = 2500.0
+
+[[material]]
+name = "steel"
+
+[[pair]]
+materials = ["glass", "glass"]
+restitution = 0.926
+friction = 0.16
+
+[[pair]]
+materials = ["glass", "steel"]
+restitution = 0.8
+friction = 0.2
+
+[[particle]]
+material = "glass"
+radius = 1e-3
+position = [0.0, 0.0, 0.0015]
+velocity = [0.0, 0.0, -0.5]
+
+[[particles]]
+material = "glass"
+count = 600
+diameter_min = 1.8e-3
+diameter_max = 2.2e-3
+region = {type = "box", min = [-0.013, -0.013, 0.004], max = [0.013, 0.013, 0.04]}
+
+[[wall]]
+type = "plane"
+material = "steel"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[wall]]
+type = "cylinder"
+material = "steel"
+point = [0.0, 0.0, 0.0]
+axis = [0.0, 0.0, 1.0]
+radius = 0.02
+
+[output]
+interval = 5e-6
+trace = [0, 1, 2]
+vtk = true
+"""
+
+
+def run(args, cwd):
+    return subprocess.run([EXE] + args, cwd=cwd, capture_output=True, text=True, timeout=600)
+
+
+def expect_bad(config_text, *fragments, extra_args=()):
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        with open(path, "w") as f:
+            f.write(config_text)
+        out = os.path.join(d, "out")
+        r = run(["run", path, "--out", out, *extra_args], d)
+        assert r.returncode == 2, f"exit code {r.returncode}, expected 2; stderr: {r.stderr}"
+        for frag in ("scene.toml",) + fragments:
+            assert frag in r.stderr, f"message lacks {frag!r}: {r.stderr}"
+        assert not os.path.exists(out), "nothing may be written for bad input"
+        print("refused as expected:", r.stderr.strip())
+
+
+def replace(old, new, text=BASE):
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+CHECKS = {}
+
+
+def check(f):
+    CHECKS[f.__name__] = f
+    return f
+
+
+@check
+def unknown_key():
+    expect_bad(replace("seed = 3", "seed = 3\nsede = 4"), "simulation.sede", "unknown key", "line 7")
+
+
+@check
+def unknown_top_level_table():
+    expect_bad(BASE + "\n[outptu]\ninterval = 1\n", "outptu", "unknown top-level key")
+
+
+@check
+def wrong_type():
+    expect_bad(replace("count = 600", 'count = "many"'), "particles[1].count", "integer")
+
+
+@check
+def missing_key():
+    expect_bad(replace("friction = 0.16\n", "\n"), "pair[1].friction", "missing")
+
+
+@check
+def restitution_zero():
+    expect_bad(replace("restitution = 0.926", "restitution = 0.0"), "pair[1].restitution", "(0, 1]")
+
+
+@check
+def restitution_above_one():
+    expect_bad(replace("restitution = 0.926", "restitution = 1.2"), "pair[1].restitution", "(0, 1]")
+
+
+@check
+def negative_friction():
+    expect_bad(replace("friction = 0.16", "friction = -0.1"), "pair[1].friction", ">= 0")
+
+
+@check
+def nonpositive_youngs_modulus():
+    expect_bad(replace("youngs_modulus = 46.2e9", "youngs_modulus = 0.0"), "material[1].youngs_modulus", "E > 0")
+
+
+@check
+def nonpositive_radius():
+    expect_bad(replace("radius = 1e-3\n", "radius = -1e-3\n"), "particle[1].radius", "> 0")
+
+
+@check
+def pair_with_unknown_material():
+    expect_bad(replace('materials = ["glass", "steel"]', 'materials = ["glass", "stel"]'),
+               "pair[2].materials", 'unknown material "stel"', "glass, steel")
+
+
+@check
+def missing_pair_for_touching_materials():
+    text = replace('[[pair]]\nmaterials = ["glass", "steel"]\nrestitution = 0.8\nfriction = 0.2\n', "")
+    expect_bad(text, "no [[pair]]", '"glass" and "steel"')
+
+
+@check
+def overlapping_particles():
+    extra = '\n[[particle]]\nmaterial = "glass"\nradius = 1e-3\nposition = [0.0, 0.0, 0.0034]\n'
+    expect_bad(replace("[[particles]]", extra + "\n[[particles]]"), "overlaps particle[1]", "1 %")
+
+
+@check
+def small_overlap_of_prepared_specimen_is_accepted():
+    # two beads overlapping by 1e-5 of a radius, as in a compressed specimen: not an error
+    extra = '\n[[particle]]\nmaterial = "glass"\nradius = 1e-3\nposition = [0.0, 0.0, 0.00349999999]\n'
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        with open(path, "w") as f:
+            f.write(replace("[[particles]]", extra + "\n[[particles]]"))
+        r = run(["run", path, "--out", os.path.join(d, "out"), "--quiet"], d)
+        assert r.returncode == 0, r.stderr
+
+
+@check
+def particle_outside_wall():
+    expect_bad(replace("position = [0.0, 0.0, 0.0015]", "position = [0.0, 0.0, -0.002]"), "outside wall[1]")
+
+
+@check
+def too_many_particles_for_region():
+    expect_bad(replace("count = 600", "count = 50000"), "particles.count", "fit")
+
+
+@check
+def bad_unit():
+    expect_bad(replace("duration = 2e-5", 'duration = "20 parsec"'), "simulation.duration", "unknown unit")
+
+
+@check
+def toml_syntax_error():
+    expect_bad(replace("seed = 3", "seed = = 3"), "TOML syntax error", "line 6")
+
+
+@check
+def missing_config_file():
+    with tempfile.TemporaryDirectory() as d:
+        r = run(["run", "nope.toml", "--out", os.path.join(d, "out")], d)
+        assert r.returncode == 2 and "nope.toml" in r.stderr, r.stderr
+        assert not os.path.exists(os.path.join(d, "out"))
+
+
+@check
+def bad_command_line():
+    with tempfile.TemporaryDirectory() as d:
+        r = run(["run", "x.toml"], d)  # --out missing
+        assert r.returncode == 2 and "--out" in r.stderr, r.stderr
+        r = run(["run", "x.toml", "--out", "o", "--threads", "0"], d)
+        assert r.returncode == 2 and "--threads" in r.stderr, r.stderr
+
+
+@check
+def existing_output_not_overwritten():
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        with open(path, "w") as f:
+            f.write(BASE)
+        out = os.path.join(d, "out")
+        os.makedirs(out)
+        with open(os.path.join(out, "precious.txt"), "w") as f:
+            f.write("keep me")
+        r = run(["run", path, "--out", out, "--quiet"], d)
+        assert r.returncode == 2 and "--overwrite" in r.stderr, r.stderr
+        assert os.listdir(out) == ["precious.txt"]
+        r = run(["run", path, "--out", out, "--overwrite", "--quiet"], d)
+        assert r.returncode == 0, r.stderr
+        assert open(os.path.join(out, "precious.txt")).read() == "keep me", "foreign files survive"
+
+
+def run_base(d, threads, text=BASE):
+    path = os.path.join(d, "scene.toml")
+    with open(path, "w") as f:
+        f.write(text)
+    out = os.path.join(d, f"out{threads}")
+    r = run(["run", path, "--out", out, "--threads", str(threads), "--quiet"], d)
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+@check
+def outputs_are_complete():
+    with tempfile.TemporaryDirectory() as d:
+        out = run_base(d, 2)
+        names = sorted(os.listdir(out))
+        assert names == ["final.csv", "particles.pvd", "summary.json", "trace.csv", "vtk"], names
+        trace = open(os.path.join(out, "trace.csv")).read().splitlines()
+        assert trace[0] == "t,id,x,y,z,vx,vy,vz,wx,wy,wz", trace[0]
+        assert len(trace) == 1 + 3 * 5, len(trace)  # 3 traced particles at t = 0, 5, 10, 15, 20 us
+        final = open(os.path.join(out, "final.csv")).read().splitlines()
+        assert len(final) == 1 + 601 and final[1].startswith("0,"), final[:2]
+        s = json.load(open(os.path.join(out, "summary.json")))
+        for key in ("inputs", "derived", "steps", "wall_time_s", "grainlab_version"):
+            assert key in s, key
+        assert s["inputs"]["simulation"]["seed"] == 3
+        assert abs(s["derived"]["time_step_s"] - 0.1 * s["derived"]["collision_duration_s"]) < 1e-20
+
+
+@check
+def threads_give_identical_results():
+    # 601 particles: above the size where the loops go parallel (core/particles.hpp)
+    with tempfile.TemporaryDirectory() as d:
+        one, two = run_base(d, 1), run_base(d, 2)
+        for name in ("final.csv", "trace.csv"):
+            a = open(os.path.join(one, name)).read()
+            b = open(os.path.join(two, name)).read()
+            assert a == b, f"{name} differs between 1 and 2 threads"
+
+
+@check
+def vtk_files_open_in_vtk():
+    import vtk  # Debian python3-vtk9
+
+    with tempfile.TemporaryDirectory() as d:
+        out = run_base(d, 2)
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        snaps = re.findall(r'file="([^"]+)"', open(os.path.join(out, "particles.pvd")).read())
+        assert len(snaps) == 5, snaps
+        reader.SetFileName(os.path.join(out, snaps[-1]))
+        reader.Update()
+        grid = reader.GetOutput()
+        assert grid.GetNumberOfPoints() == 601, grid.GetNumberOfPoints()
+        for name in ("radius", "velocity", "displacement", "rotation", "id"):
+            assert grid.GetPointData().GetArray(name) is not None, name
+        walls = vtk.vtkXMLUnstructuredGridReader()
+        walls.SetFileName(os.path.join(out, "vtk", "walls.vtu"))
+        walls.Update()
+        assert walls.GetOutput().GetNumberOfCells() == 1 + 32
+        collection = vtk.vtkXMLCollectionReader() if hasattr(vtk, "vtkXMLCollectionReader") else None
+        if collection is not None:
+            collection.SetFileName(os.path.join(out, "particles.pvd"))
+            collection.Update()
+
+
+@check
+def params_shows_reference_constants():
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        text = replace("diameter_min = 1.8e-3\ndiameter_max = 2.2e-3", 'diameter = "2 mm"')
+        with open(path, "w") as f:
+            f.write(text)
+        r = run(["params", path, "--json"], d)
+        assert r.returncode == 0, r.stderr
+        p = json.loads(r.stdout)
+        glass = [x for x in p["pairs"] if x["materials"] == ["glass", "glass"]][0]
+        assert abs(glass["k_n_N_per_m"] - 7.257e7) < 0.001e7, glass["k_n_N_per_m"]
+        assert abs(glass["collision_duration_s"] - 8.44e-7) < 0.01e-7, glass["collision_duration_s"]
+        assert glass["damping_ratio_used"] > glass["damping_ratio_textbook"]
+        r = run(["params", path], d)
+        assert r.returncode == 0 and "7.2571e+07" in r.stdout and "zeta" in r.stdout, r.stdout
+
+
+if __name__ == "__main__":
+    CHECKS[sys.argv[2]]()
+    print("ok:", sys.argv[2])

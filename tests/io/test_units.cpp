@@ -1,0 +1,28 @@
+// Numbers with units in configs (DESIGN.md sec. 6).
+#include <gtest/gtest.h>
+
+#include "io/units.hpp"
+
+using namespace grainlab;
+
+TEST(Units, ConvertsToSI) {
+  EXPECT_DOUBLE_EQ(parse_quantity("150 kPa", Quantity::pressure), 150e3);
+  EXPECT_DOUBLE_EQ(parse_quantity("46.2 GPa", Quantity::pressure), 46.2e9);
+  EXPECT_DOUBLE_EQ(parse_quantity("2 mm", Quantity::length), 2e-3);
+  EXPECT_DOUBLE_EQ(parse_quantity("0.01 m/s", Quantity::velocity), 0.01);
+  EXPECT_DOUBLE_EQ(parse_quantity("6 mm/min", Quantity::velocity), 1e-4);
+  EXPECT_DOUBLE_EQ(parse_quantity("2500 kg/m3", Quantity::density), 2500.0);
+  EXPECT_DOUBLE_EQ(parse_quantity("15 %", Quantity::dimensionless), 0.15);
+  EXPECT_DOUBLE_EQ(parse_quantity("1e-3", Quantity::length), 1e-3);  // bare number: SI
+}
+
+TEST(Units, RejectsWrongDimensionAndGarbage) {
+  EXPECT_THROW(parse_quantity("2 kPa", Quantity::length), std::invalid_argument);
+  EXPECT_THROW(parse_quantity("two mm", Quantity::length), std::invalid_argument);
+  try {
+    parse_quantity("3 furlongs", Quantity::length);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mm"), std::string::npos) << "lists accepted units";
+  }
+}
