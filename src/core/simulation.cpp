@@ -43,7 +43,10 @@ void Simulation::kick_and_drift() {
     p.position[i] += dt * p.velocity[i];
     p.rotation[i] += dt * p.angular_velocity[i];
   }
-  for (Wall& w : walls_) w.point += dt * w.velocity;
+  for (Wall& w : walls_) {
+    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
+    w.point += dt * w.velocity;
+  }
 }
 
 void Simulation::half_kick() {
@@ -60,6 +63,8 @@ void Simulation::half_kick() {
     max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
   }
   max_speed2_ = max_speed2;
+  for (Wall& w : walls_)
+    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
 
 void Simulation::compute_forces() {

@@ -27,7 +27,11 @@ struct Wall {
   double half_u = 0.0, half_v = 0.0;  // rectangle, m
   Vec3 axis{0.0, 0.0, 1.0};   // cylinder (unit)
   double radius = 0.0;        // cylinder, m
-  Vec3 velocity;              // m/s
+  Vec3 velocity;              // m/s (prescribed, or integrated when mass > 0)
+  // A wall with mass > 0 translates under the particles' force plus external_force (a load or
+  // a rope set by a test between steps), e.g. the slider of the sliding-friction test.
+  double mass = 0.0;          // kg; 0 = motion prescribed
+  Vec3 external_force;        // N
 
   // Per-step outputs of the force computation.
   Vec3 force;                     // N, exerted by the particles on the wall
