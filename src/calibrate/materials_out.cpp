@@ -28,9 +28,34 @@ std::string one_line(std::string s) {
   return s;
 }
 
+// A TOML basic string: double quotes, with backslash, quote and control characters escaped.
 std::string toml_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\')
+      out += {'\\', c};
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += fmt::format("\\u{:04X}", static_cast<unsigned>(c));
+    else
+      out += c;
+  }
+  return out + "\"";
+}
+
+// A float in TOML: the shortest text that reads back to the same double, always with a
+// decimal point or exponent so it stays a float.
+std::string toml_float(double x) {
+  std::string s = fmt::format("{}", x);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// An existing value as TOML text (scalars written the way this file writes them).
+std::string toml_value(const toml::node& node) {
+  if (auto d = node.value_exact<double>()) return toml_float(*d);
+  if (auto s = node.value_exact<std::string>()) return toml_string(*s);
   std::ostringstream out;
-  out << toml::value<std::string>(s);
+  node.visit([&](const auto& n) { out << n; });
   return out.str();
 }
 
@@ -99,9 +124,7 @@ std::vector<Pair> read_pairs(const std::string& text, const std::string& file_na
     p.b = *(*mats)[1].value<std::string>();
     for (const auto& [k, v] : *t) {
       if (k.str() == "materials") continue;
-      std::ostringstream value;
-      v.visit([&](const auto& n) { value << n; });
-      p.keys.emplace_back(std::string(k.str()), value.str());
+      p.keys.emplace_back(std::string(k.str()), toml_value(v));
     }
     if (i < comments.size())
       for (const auto& [k, c] : comments[i])
@@ -145,7 +168,7 @@ std::string merge_materials_toml(const std::string& existing, const std::string&
   std::string out =
       "# Material pairs calibrated from laboratory measurements by `grainlab calibrate`.\n"
       "# Running `grainlab calibrate ... --materials-out` on this file again updates the values\n"
-      "# it computes and keeps everything else. Copy the entries into a scene, or include them.\n";
+      "# it computes and keeps everything else. Copy the entries into a scene file.\n";
   for (Pair& p : pairs) {
     std::stable_sort(p.keys.begin(), p.keys.end(), [](const auto& x, const auto& y) {
       return key_rank(x.first) < key_rank(y.first);

@@ -58,6 +58,11 @@ TEST(MaterialsOut, MergeUpdatesKnownKeysAndKeepsTheRest) {
   EXPECT_DOUBLE_EQ((*p)["rns"].value<double>().value(), 0.4);
   EXPECT_NE(merged.find("# restitution: from throws"), std::string::npos) << merged;
   EXPECT_NE(merged.find("# friction: from slide\n"), std::string::npos) << merged;
+  // Kept values are written back as short as they read (not 0.57999999999999996).
+  EXPECT_NE(merged.find("materials = [\"glass\", \"rubber_membrane\"]\n# restitution: from "
+                        "throws\nrestitution = 0.58\n"),
+            std::string::npos)
+      << merged;
   // Re-running replaces the value and its comment, nothing is duplicated.
   const std::string again = merge_materials_toml(
       merged, "m.toml", {{"glass", "rubber_membrane", {{"restitution", 0.6, "new"}}}});
