@@ -93,7 +93,10 @@ int finish(const CommonOptions& o, const std::string& text, const nlohmann::json
   else
     std::cout << text;
   std::cout.flush();
-  if (!o.materials_out.empty()) {
+  if (!o.materials_out.empty() && updates.empty()) {
+    fmt::print(stderr, "grainlab: warning: no calibrated value to write; {} not written\n",
+               o.materials_out);
+  } else if (!o.materials_out.empty()) {
     write_materials_toml(o.materials_out, updates);
     std::size_t n = 0;
     for (const auto& u : updates) n += u.values.size();

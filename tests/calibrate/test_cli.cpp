@@ -224,3 +224,18 @@ TEST_F(Cli, Plots) {
     EXPECT_EQ(slurp(dir_ / png).substr(1, 3), "PNG");
   }
 }
+
+TEST_F(Cli, PublishedSpeedsOnlyGiveNoQuasiStaticValue) {
+  // 2.5, 5, 12.5, 25 mm/min (the reference study's speeds) cannot fix a quadratic below
+  // 5 mm/min: per-speed results, a warning, exit 0, and no materials file with nothing in it.
+  std::string csv = "material,speed_mm_per_min,normal_load_N,friction_force_N\n";
+  for (const char* v : {"2.5", "5", "12.5", "25"})
+    for (const char* row : {",0.5,0.105\n", ",1.0,0.211\n"}) csv += std::string("rm,") + v + row;
+  file("s.csv", csv);
+  const Result r = run("calibrate friction s.csv --materials-out m.toml");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("no speed fit"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "m.toml"));
+  EXPECT_EQ(run("calibrate friction s.csv --at-speed 25 --materials-out m.toml").code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "m.toml"));
+}
