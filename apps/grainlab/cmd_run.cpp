@@ -6,6 +6,8 @@
 #include "core/simulation.hpp"
 #include "io/config_error.hpp"
 #include "io/scene_run.hpp"
+#include "io/toml_reader.hpp"
+#include "lab/lab_test.hpp"
 
 namespace grainlab::app {
 
@@ -21,7 +23,10 @@ Command add_run_command(CLI::App& app) {
   sub->add_flag("--quiet", options->quiet, "no progress output");
   return {sub, [options, config] {
             try {
-              run_scene(*config, *options);
+              // A config with a [test] table is a virtual laboratory test (src/lab/).
+              const toml::table root = parse_toml_file(*config);
+              if (root.contains("test")) run_lab_test(*config, root, *options);
+              else run_scene(*config, *options);
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());
               return exit_bad_input;

@@ -28,6 +28,8 @@ int material_index(TableReader& r, const std::string& key, const std::string& na
                           known.empty() ? "none" : known));
 }
 
+}  // namespace
+
 void read_simulation(const toml::table& root, SceneConfig& c) {
   const toml::node* n = root.get("simulation");
   if (!n || !n->is_table())
@@ -264,22 +266,24 @@ void read_output(const toml::table& root, SceneConfig& c) {
   if (c.output.vtk_interval == 0.0) c.output.vtk_interval = c.output.interval;
 }
 
-}  // namespace
+void check_top_level_keys(const toml::table& root, const std::string& file, bool allow_test) {
+  for (const auto& [key, value] : root) {
+    static const char* known[] = {"simulation", "material", "pair", "particle", "particles", "wall", "output"};
+    bool ok = allow_test && key.str() == "test";
+    for (const char* k : known) ok = ok || key.str() == k;
+    if (!ok)
+      throw ConfigError(fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
+                                    "material, pair, particle, particles, wall, output{})",
+                                    file, value.source().begin.line, key.str(), allow_test ? ", test" : ""));
+  }
+}
 
 SceneConfig load_scene(const std::string& path) {
   SceneConfig c;
   c.file = path;
   c.source = parse_toml_file(path);
   const toml::table& root = c.source;
-  for (const auto& [key, value] : root) {
-    static const char* known[] = {"simulation", "material", "pair", "particle", "particles", "wall", "output"};
-    bool ok = false;
-    for (const char* k : known) ok = ok || key.str() == k;
-    if (!ok)
-      throw ConfigError(fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
-                                    "material, pair, particle, particles, wall, output)",
-                                    path, value.source().begin.line, key.str()));
-  }
+  check_top_level_keys(root, path, false);
   read_simulation(root, c);
   read_materials(root, c);
   read_pairs(root, c);
