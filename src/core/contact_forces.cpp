@@ -91,7 +91,11 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       const Wall& w = walls[c.wall[e]];
       const WallGap g = wall_gap(w, p.position[i]);
       const double overlap = r - g.gap;
-      if (overlap <= 0.0 || p.inverse_mass[i] == 0.0) {
+      // A wall with mass (a slider) is a second body: m* = m_p M / (m_p + M); a fixed wall has
+      // M = infinity. A fixed particle touches only walls that have mass.
+      const double wall_inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;
+      const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass;
+      if (overlap <= 0.0 || inverse_mass_sum == 0.0) {
         c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
         c.normal_stiffness[e] = c.normal_force[e] = 0.0;
         c.sliding_spring[e] = Vec3{};
@@ -104,13 +108,13 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       k.normal = g.normal;
       k.overlap = overlap;
       k.effective_radius = r;
-      k.effective_mass = 1.0 / p.inverse_mass[i];
+      k.effective_mass = 1.0 / inverse_mass_sum;
       const double lever = g.gap;  // contact point on the wall surface
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
                             w.velocity, Vec3{}, 0.0);
       double inertia = 0.0, contact_radius = 0.0;
       if constexpr (R || T) {
-        inertia = 1.0 / p.inverse_inertia[i];
+        inertia = p.inverse_inertia[i] > 0.0 ? 1.0 / p.inverse_inertia[i] : 0.0;
         contact_radius = contact_circle_radius_on_wall(r, overlap);
       }
       ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,

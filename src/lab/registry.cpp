@@ -3,12 +3,14 @@
 #include "io/config_error.hpp"
 #include "lab/flat_throw.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/sliding_friction.hpp"
 
 namespace grainlab {
 
 const std::vector<LabTestEntry>& lab_tests() {
   static const std::vector<LabTestEntry> table{
       {"flat_throw", "simulated flat-throw restitution test (DESIGN.md sec. 5)", run_flat_throw},
+      {"sliding_friction", "simulated sliding-friction test, with inverse mode (DESIGN.md sec. 5)", run_sliding_friction},
   };
   return table;
 }

@@ -1,0 +1,203 @@
+#include "lab/sliding_friction.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "calibrate/friction_fits.hpp"
+#include "contact/time_step.hpp"
+#include "core/random_insertion.hpp"
+#include "io/progress.hpp"
+#include "lab/deposition.hpp"
+
+namespace grainlab {
+namespace {
+
+Wall box_plane(int material, const Vec3& point, const Vec3& normal) {
+  Wall w;
+  w.shape = WallShape::plane;
+  w.material = material;
+  w.point = point;
+  w.normal = normal;
+  finish_wall_geometry(w);
+  return w;
+}
+
+struct Bed {
+  ParticleStore particles;
+  std::vector<Wall> walls;
+  double top = 0.0;  // m
+};
+
+SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTable& table, int bead,
+                                double density) {
+  const double r_min = 0.5 * s.diameter * 0.99;
+  const PairParams& pp = table(bead, bead);
+  SimulationSettings out;
+  out.time_step = s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
+  out.dt_fraction = s.dt_fraction;
+  out.gravity = {0.0, 0.0, -s.gravity};
+  out.skin = 0.1 * s.diameter;
+  return out;
+}
+
+// Where the slider starts: centred across the bed, its rear edge one diameter from the back wall.
+Vec3 slider_start(const SlidingFrictionSettings& s, double bed_top) {
+  return {s.diameter + 0.5 * s.slider_length, 0.5 * s.bed_width, bed_top + 0.02 * s.diameter};
+}
+
+Bed fixed_bead_patch(const SlidingFrictionSettings& s, int bead, double density) {
+  const double d = s.diameter, r = 0.5 * d;
+  const Vec3 c = slider_start(s, d);
+  const double x_lo = c.x - 0.5 * s.slider_length + s.slide_distance + 0.5 * d;
+  const double x_hi = c.x + 0.5 * s.slider_length - 0.5 * d;
+  const double half_width = 0.5 * (s.bed_width - 2.0 * d) - 0.5 * d;
+  Bed bed;
+  uint32_t id = 0;
+  for (double x = x_lo; x <= x_hi; x += d)
+    for (double y = c.y - half_width; y <= c.y + half_width + 1e-12; y += d)
+      bed.particles.add(id++, bead, r, density, {x, y, r}, {}, {}, true);
+  if (bed.particles.size() == 0)
+    throw std::runtime_error("sliding friction: the slider is too short for the slide distance (no fixed bead stays under it)");
+  bed.top = d;
+  return bed;
+}
+
+Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead, double density) {
+  if (s.fixed_bed) return fixed_bead_patch(s, bead, density);
+  const double d = s.diameter, L = s.bed_length, W = s.bed_width;
+  const long count = static_cast<long>(s.layers) * static_cast<long>(L / d) * static_cast<long>(W / d);
+  // Insert loosely (solid fraction 0.2) above the floor, then let the beads fall and settle.
+  const double insert_height = count * (M_PI / 6.0) * d * d * d / (0.2 * L * W);
+  std::vector<Sphere> spheres;
+  std::mt19937_64 rng(s.seed);
+  InsertionRegion region;
+  region.box_min = {0, 0, 0};
+  region.box_max = {L, W, insert_height};
+  if (insert_random_spheres(spheres, region, count, 0.99 * d, 1.01 * d, rng) < count)
+    throw std::runtime_error("sliding friction: could not insert the bed's beads");
+  Bed bed;
+  for (size_t i = 0; i < spheres.size(); ++i)
+    bed.particles.add(static_cast<uint32_t>(i), bead, spheres[i].radius, density, spheres[i].centre, {}, {}, false);
+  bed.walls = {box_plane(bead, {0, 0, 0}, {0, 0, 1}), box_plane(bead, {0, 0, 0}, {1, 0, 0}),
+               box_plane(bead, {L, 0, 0}, {-1, 0, 0}), box_plane(bead, {0, 0, 0}, {0, 1, 0}),
+               box_plane(bead, {0, W, 0}, {0, -1, 0})};
+  DepositionSettings dep;
+  dep.min_time = std::sqrt(2.0 * insert_height / s.gravity);
+  dep.max_time = dep.min_time + 0.2;
+  dep.rest_speed = 1e-3;
+  DepositionResult r = deposit(std::move(bed.particles), bed.walls, table, settings_for(s, table, bead, density), dep);
+  bed.particles = std::move(r.particles);
+  for (Vec3& v : bed.particles.velocity) v = {};
+  for (Vec3& w : bed.particles.angular_velocity) w = {};
+  for (size_t i = 0; i < bed.particles.size(); ++i)
+    bed.top = std::max(bed.top, bed.particles.position[i].z + bed.particles.radius[i]);
+  return bed;
+}
+
+LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const PairTable& table, int bead,
+                    int slider_material, double density, double load) {
+  const double d = s.diameter, W = s.bed_width;
+  const double slider_length = s.slider_length;
+  Wall slider;
+  slider.name = "slider";
+  slider.shape = WallShape::rectangle;
+  slider.material = slider_material;
+  slider.point = slider_start(s, bed.top);
+  slider.normal = {0, 0, 1};
+  slider.axis_u = {1, 0, 0};
+  slider.half_u = 0.5 * slider_length;
+  slider.half_v = 0.5 * (W - 2.0 * d);
+  slider.mass = s.slider_mass;
+  finish_wall_geometry(slider);
+  std::vector<Wall> walls = bed.walls;
+  walls.push_back(slider);
+  const size_t k = walls.size() - 1;
+  Simulation sim(bed.particles, walls, table, settings_for(s, table, bead, density));
+
+  // The rope and force sensor: a spring with a parallel dashpot that damps the slider-rope
+  // oscillator critically (c = 2 sqrt(k m)), as the slow laboratory pull is quasi-static; the
+  // slider runs on a guide (no sideways motion).
+  const double rope_damping = 2.0 * std::sqrt(s.spring_stiffness * s.slider_mass);
+  double anchor = sim.walls()[k].point.x, anchor_speed = 0.0;
+  const double guide_y = sim.walls()[k].point.y;
+  auto step = [&] {
+    Wall& w = sim.walls()[k];
+    w.external_force = {s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x),
+                        0.0, -load};
+    sim.step();
+    Wall& after = sim.walls()[k];
+    after.velocity.y = 0.0;
+    after.point.y = guide_y;
+  };
+  // Load: the slider settles on the bed under P with the rope anchored where it starts.
+  const double dt = sim.settings().time_step;
+  const long chunk = std::max(1L, static_cast<long>(2e-4 / dt));
+  while (sim.time() < 0.03) {
+    for (long i = 0; i < chunk; ++i) step();
+    if (sim.time() > 0.002 && std::abs(sim.walls()[k].velocity.z) < 1e-4) break;
+  }
+  // Pull: the far end of the rope moves at V; the rope force is the spring's extension.
+  LoadRun run;
+  run.load = load;
+  const double start_anchor = anchor, t0 = sim.time();
+  const double duration = s.slide_distance / s.speed;
+  const long record_every = std::max(1L, static_cast<long>(duration / dt / 400));
+  anchor_speed = s.speed;
+  for (long n = 0; sim.time() - t0 < duration; ++n) {
+    anchor = start_anchor + s.speed * (sim.time() - t0);
+    step();
+    if (n % record_every == 0) {
+      const Wall& w = sim.walls()[k];
+      anchor = start_anchor + s.speed * (sim.time() - t0);  // rope end at the slider's time
+      const double rope_force = s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x);
+      run.record.push_back({sim.time() - t0, anchor - start_anchor, rope_force, w.point.z});
+    }
+  }
+  // Steady sliding: the second half of the pull.
+  double sum = 0.0, sum2 = 0.0;
+  size_t n = 0;
+  for (const auto& r : run.record)
+    if (r[1] >= 0.5 * s.slide_distance) {
+      sum += r[2];
+      sum2 += r[2] * r[2];
+      ++n;
+    }
+  run.mean_force = sum / n;
+  run.force_sd = std::sqrt(std::max(0.0, sum2 / n - run.mean_force * run.mean_force));
+  return run;
+}
+
+}  // namespace
+
+SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s, const PairTable& table,
+                                                double density, Progress* progress) {
+  const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
+  SlidingFrictionResult out;
+  out.friction_input = table(bead, slider).friction;
+  const Bed bed = make_bed(s, table, bead, density);
+  out.bead_count = static_cast<int>(bed.particles.size());
+  out.bed_height = bed.top;
+  out.time_step = settings_for(s, table, bead, density).time_step;
+  std::vector<calibrate::LoadPoint> points;
+  for (size_t i = 0; i < s.loads.size(); ++i) {
+    out.runs.push_back(pull_slider(bed, s, table, bead, slider, density, s.loads[i]));
+    points.push_back({i + 1, s.speed * 6e4, s.loads[i], out.runs.back().mean_force});
+    if (progress)
+      progress->update(double(i + 1) / s.loads.size(),
+                       fmt::format("P = {:.3g} N: F = {:.4g} N", s.loads[i], out.runs.back().mean_force));
+  }
+  if (points.size() >= 2) {
+    const calibrate::OriginFit fit = calibrate::fit_through_origin(points);
+    out.friction_apparent = fit.slope;
+    out.friction_apparent_se = fit.standard_error;
+    out.r_squared = fit.r_squared;
+  } else {
+    out.friction_apparent = out.runs[0].mean_force / out.runs[0].load;
+  }
+  return out;
+}
+
+}  // namespace grainlab

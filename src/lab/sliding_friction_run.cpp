@@ -1,0 +1,178 @@
+// `[test] type = "sliding_friction"`: reads the test, runs it (and the inverse search for the
+// input friction that reproduces a measured apparent one), writes the results.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "grainlab/version.hpp"
+#include "io/config_error.hpp"
+#include "io/output_files.hpp"
+#include "io/progress.hpp"
+#include "io/scene_builder.hpp"
+#include "io/toml_reader.hpp"
+#include "lab/sliding_friction.hpp"
+
+namespace grainlab {
+namespace {
+
+std::vector<double> read_loads(TableReader& t) {
+  const toml::node* n = t.node("loads");
+  if (!n) return SlidingFrictionSettings{}.loads;
+  const toml::array* a = n->as_array();
+  if (!a || a->empty()) t.fail("loads", "expected a list of normal loads, e.g. [\"0.1 N\", \"0.2 N\"]");
+  std::vector<double> loads;
+  for (const toml::node& item : *a) {
+    double v = 0.0;
+    if (auto x = item.value<double>()) v = *x;
+    else if (auto s = item.value<std::string>()) {
+      try {
+        v = parse_quantity(*s, Quantity::force);
+      } catch (const std::invalid_argument& e) {
+        t.fail("loads", e.what());
+      }
+    }
+    if (!(v > 0.0)) t.fail("loads", "expected normal loads > 0 N");
+    loads.push_back(v);
+  }
+  return loads;
+}
+
+nlohmann::json result_json(const SlidingFrictionResult& r) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const LoadRun& run : r.runs)
+    runs.push_back({{"normal_load_N", run.load}, {"mean_sliding_force_N", run.mean_force},
+                    {"sliding_force_sd_N", run.force_sd}, {"ratio_F_over_P", run.mean_force / run.load}});
+  return {{"friction_input", r.friction_input}, {"friction_apparent", r.friction_apparent},
+          {"friction_apparent_standard_error", r.friction_apparent_se}, {"r_squared", r.r_squared},
+          {"bead_count", r.bead_count}, {"bed_height_m", r.bed_height}, {"time_step_s", r.time_step},
+          {"loads", runs}};
+}
+
+}  // namespace
+
+void run_sliding_friction(const std::string& path, const toml::table& root, const RunOptions& options) {
+  check_top_level_keys(root, path, true);
+  SceneConfig c;
+  c.file = path;
+  read_materials(root, c);
+  read_pairs(root, c);
+  TableReader t(*root.get("test")->as_table(), path, "test");
+  t.string("type");
+  SlidingFrictionSettings s;
+  s.bead_material = t.string_or("bead_material", "glass");
+  s.slider_material = t.string("slider_material");
+  s.diameter = t.number_or("diameter", Quantity::length, s.diameter);
+  s.bed_length = t.number_or("bed_length", Quantity::length, s.bed_length);
+  s.bed_width = t.number_or("bed_width", Quantity::length, s.bed_width);
+  s.slider_length = t.number_or("slider_length", Quantity::length, s.slider_length);
+  s.layers = static_cast<int>(t.integer_or("layers", s.layers));
+  s.loads = read_loads(t);
+  s.speed = t.number_or("speed", Quantity::velocity, s.speed);
+  s.slide_distance = t.number_or("slide_distance", Quantity::length, s.slide_distance);
+  s.spring_stiffness = t.number_or("spring_stiffness", Quantity::dimensionless, s.spring_stiffness);
+  s.slider_mass = t.number_or("slider_mass", Quantity::mass, s.slider_mass);
+  s.fixed_bed = t.boolean_or("fixed_bed", false);
+  s.dt_fraction = t.number_or("dt_fraction", Quantity::dimensionless, s.dt_fraction);
+  s.gravity = t.number_or("gravity", Quantity::acceleration, s.gravity);
+  s.seed = static_cast<unsigned long>(t.integer_or("seed", 1));
+  const std::optional<double> target = t.optional_number("target_friction", Quantity::dimensionless);
+  const double tolerance = t.number_or("target_tolerance", Quantity::dimensionless, 0.002);
+  if (!(s.diameter > 0)) t.fail("diameter", "expected a bead diameter > 0 m");
+  if (!(s.bed_length >= 8 * s.diameter && s.bed_width >= 4 * s.diameter))
+    t.fail("bed_length", "the bed must be at least 8 bead diameters long and 4 wide");
+  if (s.layers < 1 || s.layers > 20) t.fail("layers", "expected 1 to 20 layers");
+  if (!(s.speed > 0)) t.fail("speed", "expected a pulling speed > 0 m/s");
+  if (!(s.slider_length >= 2 * s.diameter)) t.fail("slider_length", "expected at least two bead diameters");
+  if (!(s.slide_distance > 0 && s.slider_length + s.slide_distance + 2 * s.diameter <= s.bed_length))
+    t.fail("slide_distance", "expected a distance > 0 with slider_length + slide_distance + 2 diameters <= bed_length");
+  if (!(s.spring_stiffness > 0)) t.fail("spring_stiffness", "expected a rope stiffness > 0 N/m");
+  if (!(s.slider_mass > 0)) t.fail("slider_mass", "expected a slider mass > 0 kg");
+  if (!(s.dt_fraction > 0 && s.dt_fraction <= 0.3)) t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
+  if (target && !(*target > 0 && *target < 2)) t.fail("target_friction", "expected an apparent friction in (0, 2)");
+  if (target && s.loads.size() < 2) t.fail("loads", "the inverse mode needs at least two loads");
+  PairTable table = build_pair_table(c);
+  const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
+  if (bead < 0) t.fail("bead_material", fmt::format("unknown material \"{}\"", s.bead_material));
+  if (slider < 0) t.fail("slider_material", fmt::format("unknown material \"{}\"", s.slider_material));
+  if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
+  if (!table(bead, bead).defined) t.fail("bead_material", "no [[pair]] for the bead material with itself");
+  if (!table(bead, slider).defined)
+    t.fail("slider_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.slider_material));
+  t.finish();
+
+  prepare_output_dir(options.out_dir, options.overwrite);
+  const double density = *c.materials[bead].density;
+  Progress progress("sliding friction", options.quiet, 2.0);
+  SlidingFrictionResult r = simulate_sliding_friction(s, table, density, &progress);
+
+  nlohmann::json j = result_json(r);
+  j["grainlab_version"] = version_string;
+  j["config_file"] = path;
+  j["test"] = "sliding_friction";
+  j["pulling_speed_m_per_s"] = s.speed;
+  j["fixed_bed"] = s.fixed_bed;
+  std::string csv = "normal_load_N,t_s,pulled_m,rope_force_N,slider_z_m\n";
+  for (const LoadRun& run : r.runs)
+    for (const auto& row : run.record)
+      csv += fmt::format("{},{},{},{},{}\n", run.load, exact(row[0]), exact(row[1]), exact(row[2]), exact(row[3]));
+
+  if (target) {
+    // Inverse mode: find the input mu_s whose apparent friction is the measured one. The
+    // apparent friction grows with mu_s; secant steps kept inside a bracket (regula falsi with
+    // bisection fallback), each evaluation a full set of loads on the same bed.
+    nlohmann::json iterations = nlohmann::json::array();
+    auto apparent_for = [&](double mu) {
+      PairProperties p;
+      const PairParams& q = table(bead, slider);
+      p.restitution = q.restitution;
+      p.friction = mu;
+      p.rns = q.rns;
+      p.rzs = q.rzs;
+      p.arf = q.arf;
+      PairTable trial = table;
+      trial.set(bead, slider, p);
+      const SlidingFrictionResult tr = simulate_sliding_friction(s, trial, density);
+      iterations.push_back({{"friction_input", mu}, {"friction_apparent", tr.friction_apparent}, {"r_squared", tr.r_squared}});
+      if (!options.quiet) fmt::print(stderr, "inverse: mu_s = {:.4f} -> apparent {:.4f}\n", mu, tr.friction_apparent);
+      return tr.friction_apparent - *target;
+    };
+    double lo = 0.0, f_lo = -*target;  // mu_s = 0: no friction at all
+    double hi = r.friction_input, f_hi = r.friction_apparent - *target;
+    iterations.push_back({{"friction_input", hi}, {"friction_apparent", r.friction_apparent}, {"r_squared", r.r_squared}});
+    while (f_hi < 0 && hi < 1.5) {
+      lo = hi, f_lo = f_hi;
+      hi = std::min(1.5, 2.0 * hi + 0.05);
+      f_hi = apparent_for(hi);
+    }
+    double best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi, best_f = std::min(std::abs(f_lo), std::abs(f_hi));
+    bool reached = f_hi >= 0;
+    for (int it = 0; reached && it < 12 && best_f > tolerance; ++it) {
+      double mid = lo - f_lo * (hi - lo) / (f_hi - f_lo);
+      if (!(mid > lo + 0.05 * (hi - lo) && mid < hi - 0.05 * (hi - lo))) mid = 0.5 * (lo + hi);
+      const double f = apparent_for(mid);
+      if (std::abs(f) < best_f) best = mid, best_f = std::abs(f);
+      (f < 0 ? lo : hi) = mid;
+      (f < 0 ? f_lo : f_hi) = f;
+    }
+    j["inverse"] = {{"target_friction_apparent", *target}, {"tolerance", tolerance},
+                    {"reached", reached && best_f <= tolerance}, {"friction_input_found", best},
+                    {"apparent_error", best_f}, {"iterations", iterations}};
+    if (!options.quiet)
+      fmt::print("inverse: input friction {:.4f} reproduces the apparent friction {:.4f} (within {:.4f}){}\n",
+                 best, *target, best_f, reached ? "" : " -- target not reachable below mu_s = 1.5");
+  }
+  write_file_atomically(options.out_dir + "/force_time.csv", csv);
+  write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
+  progress.finish(fmt::format("{} beads, {} loads", r.bead_count, r.runs.size()));
+  if (!options.quiet) {
+    fmt::print("sliding friction {} on a {} bed: input mu_s = {:.4f}, apparent = {:.4f} +- {:.4f} (R^2 = {:.4f})\n",
+               s.slider_material, s.bead_material, r.friction_input, r.friction_apparent,
+               r.friction_apparent_se, r.r_squared);
+    for (const LoadRun& run : r.runs)
+      fmt::print("  P = {:.4g} N   F = {:.4g} N (sd {:.2g})   F/P = {:.4f}\n", run.load, run.mean_force,
+                 run.force_sd, run.mean_force / run.load);
+  }
+}
+
+}  // namespace grainlab
