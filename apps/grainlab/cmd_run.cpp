@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <omp.h>
 
 #include "command.hpp"
 #include "core/simulation.hpp"
@@ -23,6 +24,7 @@ Command add_run_command(CLI::App& app) {
   sub->add_flag("--quiet", options->quiet, "no progress output");
   return {sub, [options, config] {
             try {
+              if (options->threads > 0) omp_set_num_threads(options->threads);
               // A config with a [test] table is a virtual laboratory test (src/lab/).
               const toml::table root = parse_toml_file(*config);
               if (root.contains("test")) run_lab_test(*config, root, *options);

@@ -18,6 +18,7 @@ struct Command {
 
 Command add_run_command(CLI::App& app);
 Command add_params_command(CLI::App& app);
+Command add_prepare_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
 
 }  // namespace grainlab::app

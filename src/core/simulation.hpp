@@ -50,6 +50,9 @@ class Simulation {
   std::vector<Wall>& walls() { return walls_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const PairTable& pair_table() const { return table_; }
+  // Material-pair constants may change between steps (e.g. friction during compaction); which
+  // optional pieces exist is fixed at construction.
+  PairTable& pair_table() { return table_; }
   const PairContacts& pair_contacts() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }

@@ -42,7 +42,6 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
       throw ConfigError(fmt::format("{}: output.trace: particle id {} does not exist (ids 0..{})",
                                     config_path, id, particles.size() - 1));
   prepare_output_dir(options.out_dir, options.overwrite);
-  if (options.threads > 0) omp_set_num_threads(options.threads);
 
   const auto wall_start = std::chrono::steady_clock::now();
   Simulation sim(std::move(particles), config.walls, std::move(table), settings);

@@ -4,6 +4,7 @@
 #include "lab/flat_throw.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/sliding_friction.hpp"
+#include "lab/triaxial.hpp"
 
 namespace grainlab {
 
@@ -11,6 +12,7 @@ const std::vector<LabTestEntry>& lab_tests() {
   static const std::vector<LabTestEntry> table{
       {"flat_throw", "simulated flat-throw restitution test (DESIGN.md sec. 5)", run_flat_throw},
       {"sliding_friction", "simulated sliding-friction test, with inverse mode (DESIGN.md sec. 5)", run_sliding_friction},
+      {"triaxial", "triaxial test of a cuboid specimen with servo-held lateral walls (DESIGN.md sec. 5)", run_triaxial},
   };
   return table;
 }

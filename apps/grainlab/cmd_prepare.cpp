@@ -1,0 +1,34 @@
+#include <fmt/format.h>
+
+#include <memory>
+#include <omp.h>
+
+#include "command.hpp"
+#include "io/config_error.hpp"
+#include "lab/triaxial.hpp"
+
+namespace grainlab::app {
+
+Command add_prepare_command(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  auto config = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand("prepare", "prepare (compress) the specimen of a triaxial config and save it");
+  sub->add_option("config", *config, "triaxial test configuration (TOML)")->required();
+  sub->add_option("--out", options->out_dir, "output directory (specimen.csv, specimen.json)")->required();
+  sub->add_flag("--overwrite", options->overwrite, "replace results in an existing output directory");
+  sub->add_option("--threads", options->threads, "OpenMP threads (results do not depend on it)")->check(CLI::Range(1, 1024));
+  sub->add_flag("--quiet", options->quiet, "no progress output");
+  return {sub, [options, config] {
+            try {
+              if (options->threads > 0) omp_set_num_threads(options->threads);
+              run_prepare(*config, *options);
+            } catch (const ConfigError& e) {
+              fmt::print(stderr, "grainlab: error: {}\n", e.what());
+              return exit_bad_input;
+            }
+            fmt::print("specimen written to {}/specimen.csv\n", options->out_dir);
+            return exit_ok;
+          }};
+}
+
+}  // namespace grainlab::app

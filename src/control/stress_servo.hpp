@@ -1,0 +1,52 @@
+// Stress-controlled walls: a proportional-integral servo whose gains come from the summed
+// contact stiffness on the wall and the time step, so the user never tunes them.
+//
+// The wall stress responds to the inward wall speed v as d(sigma)/dt = (k_sum / A) (v - v_req),
+// where v_req is the speed at which the specimen itself moves (dilation, compaction). With
+//   e = (sigma_target - sigma) A / (k_sum dt)        [m/s: the speed that cancels the error in one step]
+//   v = alpha_p e + integral,   integral += alpha_i e   (each step)
+// the closed loop is a damped oscillator with omega = sqrt(alpha_i)/dt and damping ratio
+// alpha_p / (2 sqrt(alpha_i)). alpha_p = 0.02, alpha_i = alpha_p^2 / 4: critically damped (no
+// overshoot), time constant 100 steps (about 10 collision durations: slower than the contacts
+// behind the wall, which it must not excite), and no steady error while the specimen dilates
+// at a constant rate (the integral carries v_req). Speeds are capped: approach speed when the
+// wall has no contact, and a quasi-static bound set by the test.
+#pragma once
+
+#include <algorithm>
+
+namespace grainlab {
+
+struct ServoSettings {
+  double target_stress = 0.0;   // Pa, compressive positive
+  double max_speed = 0.01;      // m/s
+  double proportional = 0.02;   // alpha_p
+};
+
+class StressServo {
+ public:
+  StressServo() = default;
+  explicit StressServo(const ServoSettings& s) : s_(s) {}
+
+  // Inward wall speed for the next step, m/s (negative: outward).
+  double update(double stress, double area, double contact_stiffness, double dt) {
+    if (contact_stiffness <= 0.0) {  // not touching: approach (or retreat) at the cap
+      integral_ = 0.0;
+      return s_.target_stress > stress ? s_.max_speed : -s_.max_speed;
+    }
+    const double e = (s_.target_stress - stress) * area / (contact_stiffness * dt);
+    const double alpha_i = 0.25 * s_.proportional * s_.proportional;
+    integral_ = std::clamp(integral_ + alpha_i * e, -s_.max_speed, s_.max_speed);
+    return std::clamp(integral_ + s_.proportional * e, -s_.max_speed, s_.max_speed);
+  }
+
+  void set_max_speed(double v) { s_.max_speed = v; }
+  double integral() const { return integral_; }
+  void set_integral(double v) { integral_ = v; }  // for restarts
+
+ private:
+  ServoSettings s_;
+  double integral_ = 0.0;  // m/s
+};
+
+}  // namespace grainlab

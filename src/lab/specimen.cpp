@@ -1,0 +1,202 @@
+#include "lab/specimen.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include "contact/time_step.hpp"
+#include "control/stress_servo.hpp"
+#include "core/random_insertion.hpp"
+#include "core/simulation.hpp"
+#include "io/config_error.hpp"
+#include "io/output_files.hpp"
+#include "io/progress.hpp"
+#include "lab/cuboid_box.hpp"
+#include "measure/specimen_state.hpp"
+
+namespace grainlab {
+namespace {
+
+struct Placement {
+  std::vector<Sphere> spheres;
+  Vec3 low, high;
+};
+
+Placement place_on_jittered_lattice(const SpecimenSettings& s) {
+  std::mt19937_64 rng(s.seed);
+  const double d_max = s.diameter + s.diameter_tolerance;
+  const double spacing = 1.02 * d_max;
+  // Smallest lattice of the nominal aspect ratio with enough sites.
+  int n[3];
+  for (double scale = 1.0;; scale *= 1.01) {
+    long sites = 1;
+    for (int a = 0; a < 3; ++a) {
+      n[a] = std::max(1, static_cast<int>(std::floor(scale * s.nominal_box[a] / spacing)));
+      sites *= n[a];
+    }
+    if (sites >= s.count) break;
+  }
+  std::vector<long> sites(static_cast<size_t>(n[0]) * n[1] * n[2]);
+  for (size_t k = 0; k < sites.size(); ++k) sites[k] = static_cast<long>(k);
+  // Fisher-Yates with our own uniform draw (same on every platform).
+  for (size_t k = sites.size() - 1; k > 0; --k)
+    std::swap(sites[k], sites[static_cast<size_t>(uniform01(rng) * (k + 1))]);
+  Placement p;
+  p.low = {0, 0, 0};
+  p.high = {n[0] * spacing, n[1] * spacing, n[2] * spacing};
+  for (long k = 0; k < s.count; ++k) {
+    const long site = sites[k];
+    const int i = site % n[0], j = (site / n[0]) % n[1], l = site / (n[0] * n[1]);
+    const double r = 0.5 * (s.diameter + s.diameter_tolerance * (2.0 * uniform01(rng) - 1.0));
+    const double room = 0.5 * spacing - r;  // jitter that keeps the sphere inside its cell
+    Vec3 c{(i + 0.5) * spacing, (j + 0.5) * spacing, (l + 0.5) * spacing};
+    for (int a = 0; a < 3; ++a) c[a] += room * (2.0 * uniform01(rng) - 1.0);
+    p.spheres.push_back({c, r});
+  }
+  return p;
+}
+
+void set_compaction_friction(PairTable& table, const PairTable& original, const SpecimenSettings& s, double mu) {
+  for (int other : {s.bead_material, s.lateral_material, s.platen_material}) {
+    const PairParams& q = original(s.bead_material, other);
+    if (!q.defined) continue;
+    PairProperties p;
+    p.restitution = q.restitution;
+    p.friction = mu < 0 ? q.friction : std::min(mu, q.friction);
+    p.rns = q.rns;
+    p.rzs = q.rzs;
+    p.arf = q.arf;
+    p.rolling_damping_ratio = q.rolling_damping_ratio;
+    p.youngs_modulus = q.youngs_modulus;
+    table.set(s.bead_material, other, p);
+  }
+}
+
+}  // namespace
+
+Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress) {
+  const PairTable original = table;
+  const Placement placement = place_on_jittered_lattice(s);
+  ParticleStore particles;
+  for (size_t i = 0; i < placement.spheres.size(); ++i)
+    particles.add(static_cast<uint32_t>(i), s.bead_material, placement.spheres[i].radius, s.density,
+                  placement.spheres[i].centre, {}, {}, false);
+  Specimen out;
+  out.inserted_box = placement.high - placement.low;
+  out.inserted_solid_fraction =
+      solid_fraction(particles, out.inserted_box.x * out.inserted_box.y * out.inserted_box.z);
+
+  const double r_min = 0.5 * (s.diameter - s.diameter_tolerance);
+  const PairParams& glass = original(s.bead_material, s.bead_material);
+  SimulationSettings settings;
+  settings.time_step = s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
+  settings.dt_fraction = s.dt_fraction;
+  settings.skin = 0.1 * s.diameter;
+  // Steering: compact frictionless until the target solid fraction is reached, then switch the
+  // measured friction on so the packing locks in; without a target, the particles' own friction.
+  out.compaction_friction = s.target_solid_fraction ? 0.0 : glass.friction;
+  if (s.target_solid_fraction) set_compaction_friction(table, original, s, 0.0);
+  Simulation sim(std::move(particles), cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
+                 table, settings);
+  bool friction_restored = !s.target_solid_fraction;
+  const double dt = settings.time_step;
+  const long check_every = 200;
+  std::array<StressServo, 6> servos;
+  for (StressServo& servo : servos) servo = StressServo(ServoSettings{s.confining_stress});
+  while (sim.time() < s.max_time) {
+    for (long n = 0; n < check_every; ++n) {
+      const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
+      for (int k = 0; k < 6; ++k) {
+        servos[k].set_max_speed(s.max_strain_rate * 0.5 * size[k / 2]);
+        set_inward_speed(sim.walls(), k,
+                         servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
+                                          sim.walls()[k].contact_stiffness, dt));
+      }
+      sim.step();
+    }
+    const double volume = box_volume(sim.walls());
+    const double phi = solid_fraction(sim.particles(), volume);
+    if (!friction_restored && phi >= *s.target_solid_fraction) {
+      set_compaction_friction(sim.pair_table(), original, s, -1.0);
+      friction_restored = true;
+    }
+    double worst = 0.0;
+    for (int k = 0; k < 6; ++k)
+      worst = std::max(worst, std::abs(wall_stress(sim.walls(), k) / s.confining_stress - 1.0));
+    const double unbalanced = unbalanced_force_ratio(sim);
+    if (progress)
+      progress->update(std::min(1.0, sim.time() / s.max_time),
+                       fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}", phi,
+                                   100 * worst, unbalanced));
+    if (friction_restored && worst < s.stress_tolerance && unbalanced < s.unbalanced_tolerance) {
+      out.equilibrium_reached = true;
+      break;
+    }
+  }
+  out.low = box_low(sim.walls());
+  out.high = box_high(sim.walls());
+  out.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
+  out.coordination_number = coordination_number(sim);
+  out.unbalanced_force_ratio = unbalanced_force_ratio(sim);
+  for (int k = 0; k < 6; ++k)
+    out.max_stress_error = std::max(out.max_stress_error, std::abs(wall_stress(sim.walls(), k) / s.confining_stress - 1.0));
+  out.simulated_time = sim.time();
+  // Particles in id order, at rest (velocities dropped: the specimen is in equilibrium).
+  const ParticleStore& p = sim.particles();
+  for (size_t i : indices_by_id(p)) {
+    const double m = 1.0 / p.inverse_mass[i];
+    out.particles.add(p.id[i], p.material[i], p.radius[i], m / (4.0 / 3.0 * std::numbers::pi * std::pow(p.radius[i], 3)),
+                      p.position[i], {}, {}, false);
+  }
+  return out;
+}
+
+void save_specimen(const std::string& path, const Specimen& s) {
+  std::string text = fmt::format("# grainlab specimen: box low {} {} {} high {} {} {}\nid,material,radius,x,y,z\n",
+                                 exact(s.low.x), exact(s.low.y), exact(s.low.z), exact(s.high.x), exact(s.high.y),
+                                 exact(s.high.z));
+  const ParticleStore& p = s.particles;
+  for (size_t i = 0; i < p.size(); ++i)
+    text += fmt::format("{},{},{},{},{},{}\n", p.id[i], p.material[i], exact(p.radius[i]), exact(p.position[i].x),
+                        exact(p.position[i].y), exact(p.position[i].z));
+  write_file_atomically(path, text);
+}
+
+Specimen load_specimen(const std::string& path, double density) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("{}: cannot read the specimen file", path));
+  Specimen s;
+  std::string line;
+  int number = 1;
+  if (!std::getline(in, line) ||
+      std::sscanf(line.c_str(), "# grainlab specimen: box low %lf %lf %lf high %lf %lf %lf", &s.low.x, &s.low.y,
+                  &s.low.z, &s.high.x, &s.high.y, &s.high.z) != 6)
+    throw ConfigError(fmt::format("{} line 1: expected '# grainlab specimen: box low X Y Z high X Y Z'", path));
+  std::getline(in, line);
+  ++number;
+  if (line != "id,material,radius,x,y,z")
+    throw ConfigError(fmt::format("{} line 2: expected the header id,material,radius,x,y,z", path));
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    unsigned id;
+    int material;
+    double r, x, y, z;
+    if (std::sscanf(line.c_str(), "%u,%d,%lf,%lf,%lf,%lf", &id, &material, &r, &x, &y, &z) != 6 || !(r > 0) ||
+        id != s.particles.size())
+      throw ConfigError(fmt::format("{} line {}: expected id,material,radius,x,y,z with ids 0, 1, 2, ... and radius > 0",
+                                    path, number));
+    s.particles.add(id, material, r, density, {x, y, z}, {}, {}, false);
+  }
+  if (s.particles.size() == 0) throw ConfigError(fmt::format("{}: no particles", path));
+  s.solid_fraction = solid_fraction(s.particles, (s.high.x - s.low.x) * (s.high.y - s.low.y) * (s.high.z - s.low.z));
+  return s;
+}
+
+}  // namespace grainlab

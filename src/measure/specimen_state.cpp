@@ -1,0 +1,68 @@
+#include "measure/specimen_state.hpp"
+
+#include <numbers>
+
+namespace grainlab {
+
+Tensor3 love_weber_stress(const Simulation& sim, double volume) {
+  const ParticleStore& p = sim.particles();
+  const PairContacts& c = sim.pair_contacts();
+  const WallContacts& wc = sim.wall_contacts();
+  Tensor3 s{};
+  // Serial, in storage order: deterministic.
+  for (size_t i = 0; i < p.size(); ++i) {
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      if (c.normal_force[e] == 0.0 && norm2(c.force_on_first[e]) == 0.0) continue;
+      const Vec3 f = -1.0 * c.force_on_first[e];  // on the second particle
+      const Vec3 l = p.position[c.partner[e]] - p.position[i];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) s[a][b] += f[a] * l[b];
+    }
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
+      if (wc.normal_stiffness[e] == 0.0) continue;
+      const Vec3 f = -1.0 * wc.force_on_particle[e];  // on the wall
+      const WallGap g = wall_gap(sim.walls()[wc.wall[e]], p.position[i]);
+      const Vec3 l = g.gap * g.normal;  // centre -> contact point
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) s[a][b] += f[a] * l[b];
+    }
+  }
+  // Compressive positive: a contact pushing the bodies apart (f along l) is compression.
+  Tensor3 out{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
+  return out;
+}
+
+double solid_fraction(const ParticleStore& p, double volume) {
+  double v = 0.0;
+  for (double r : p.radius) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return v / volume;
+}
+
+double coordination_number(const Simulation& sim) {
+  long pp = sim.touching_pair_count(), pw = 0;
+  for (double k : sim.wall_contacts().normal_stiffness) pw += k > 0.0;
+  return sim.particles().size() ? (2.0 * pp + pw) / sim.particles().size() : 0.0;
+}
+
+double unbalanced_force_ratio(const Simulation& sim) {
+  const ParticleStore& p = sim.particles();
+  double net = 0.0;
+  long free = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p.inverse_mass[i] == 0.0) continue;
+    net += norm(p.force[i]);  // includes gravity: at rest under gravity it is balanced too
+    ++free;
+  }
+  double contact = 0.0;
+  long n = 0;
+  for (double f : sim.pair_contacts().normal_force)
+    if (f > 0.0) contact += f, ++n;
+  for (double f : sim.wall_contacts().normal_force)
+    if (f > 0.0) contact += f, ++n;
+  if (n == 0 || free == 0) return 1.0;
+  return (net / free) / (contact / n);
+}
+
+}  // namespace grainlab

@@ -1,0 +1,36 @@
+// Measurements on a specimen (DESIGN.md sec. 5, issue 5): stresses from the walls and from the
+// particles, solid fraction, coordination number, unbalanced force, inertial number.
+// Compressive stress is positive.
+//
+// Love-Weber average stress over the specimen volume V (symmetrised):
+//   sigma_ij = -(1/V) [ sum over particle pairs f_i l_j + sum over wall contacts f_i (x_c - x_p)_j ]
+// with f the force on the second body / on the wall, l the branch vector from the first centre to
+// the second. In static equilibrium it equals the boundary (wall) stress; the agreement is a
+// check of equilibrium and of the volume.
+#pragma once
+
+#include <array>
+
+#include "core/simulation.hpp"
+
+namespace grainlab {
+
+using Tensor3 = std::array<std::array<double, 3>, 3>;
+
+Tensor3 love_weber_stress(const Simulation& sim, double volume);
+
+// Particle volume / box volume.
+double solid_fraction(const ParticleStore& particles, double volume);
+
+// Mean number of touching contacts per particle, Z = (2 N_pp + N_pw) / N.
+double coordination_number(const Simulation& sim);
+
+// Mean |net force| on the free particles divided by the mean contact force magnitude.
+double unbalanced_force_ratio(const Simulation& sim);
+
+// I = strain_rate * d * sqrt(rho / p).
+inline double inertial_number(double strain_rate, double diameter, double density, double pressure) {
+  return pressure > 0.0 ? std::abs(strain_rate) * diameter * std::sqrt(density / pressure) : 0.0;
+}
+
+}  // namespace grainlab
