@@ -1,0 +1,182 @@
+// grainlab_bench: runs a named workload for 1 and 2 threads and prints particle-steps per
+// second, neighbour-list rebuilds, mean contacts per particle and peak RSS; appends one row per
+// run to bench/results/<hostname>.csv. Workloads: see bench/scenes.hpp.
+//
+//   grainlab_bench dense-11k                       (default: 1 and 2 threads, 3 repetitions)
+//   grainlab_bench dense-11k --threads 2 --reps 1 --steps 4000
+//   grainlab_bench dense-11k --tile 4x4x4           (64 copies side by side: 745k beads)
+//   grainlab_bench dense-11k --write-lammps-data out.data   (same packing for the peer codes)
+//   grainlab_bench settle-1M --allow-1m
+#include <omp.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "bench/scenes.hpp"
+#include "grainlab/version.hpp"
+
+using namespace grainlab;
+using namespace grainlab::bench;
+
+namespace {
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // Linux: KiB
+}
+
+// FNV-1a over the raw bytes of the state, in permanent-id order: equal for equal results.
+uint64_t state_hash(const ParticleStore& p) {
+  std::vector<Vec3> x(p.size()), v(p.size());
+  for (size_t k = 0; k < p.size(); ++k) {
+    x[p.id[k]] = p.position[k];
+    v[p.id[k]] = p.velocity[k];
+  }
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* data, size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  mix(x.data(), x.size() * sizeof(Vec3));
+  mix(v.data(), v.size() * sizeof(Vec3));
+  return h;
+}
+
+std::string hostname() {
+  char name[256] = {};
+  gethostname(name, sizeof(name) - 1);
+  return name;
+}
+
+Packing load_or_make(const std::string& workload, const std::string& cache_dir, bool allow_1m,
+                     const std::string& start_from) {
+  std::filesystem::create_directories(cache_dir);
+  const std::string path = cache_dir + "/" + workload + ".csv";
+  Packing p;
+  if (read_packing_csv(path, p)) {
+    fmt::print(stderr, "packing {}: {} beads from {}\n", workload, p.radius.size(), path);
+    return p;
+  }
+  fmt::print(stderr, "packing {}: not cached, building it (once)...\n", workload);
+  Packing start;
+  const bool have_start = !start_from.empty() && read_packing_csv(start_from, start);
+  if (workload == "dense-11k") {
+    p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true, have_start ? &start : nullptr);
+  } else if (workload == "dense-88k") {
+    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true, have_start ? &start : nullptr);
+  } else if (workload == "settle-1M") {
+    if (!allow_1m) throw CLI::ValidationError("settle-1M", "a million beads: pass --allow-1m");
+    // Solid fraction 0.25 in a 0.25 x 0.25 x 0.27 m box; gravity does the rest.
+    p = make_loose_packing(1000000, {0.25, 0.25, 0.27}, 20190603);
+  } else {
+    throw CLI::ValidationError("workload", "unknown workload " + workload);
+  }
+  write_packing_csv(p, path);
+  fmt::print(stderr, "packing {}: cached in {}\n", workload, path);
+  return p;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"grainlab benchmark runner"};
+  std::string workload = "dense-11k";
+  std::vector<int> threads{1, 2};
+  int reps = 3;
+  long steps = 0, warmup = 200;
+  std::string cache_dir = "bench-cache";
+  std::string results_dir = std::string(GRAINLAB_SOURCE_DIR) + "/bench/results";
+  std::string lammps_data, tile;
+  std::string label = "", start_from;
+  bool allow_1m = false, no_csv = false;
+  app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
+  app.add_option("--threads", threads, "thread counts to run")->delimiter(',');
+  app.add_option("--reps", reps, "repetitions per thread count");
+  app.add_option("--steps", steps, "timed steps per run (default: ~2.5e7 particle-steps)");
+  app.add_option("--warmup", warmup, "untimed steps before each run");
+  app.add_option("--cache-dir", cache_dir, "where packings are cached");
+  app.add_option("--results-dir", results_dir, "where <hostname>.csv gets a row per run");
+  app.add_option("--write-lammps-data", lammps_data, "write the packing as a LAMMPS data file and exit");
+  app.add_option("--tile", tile, "run NXxNYxNZ copies of the packing side by side");
+  app.add_option("--label", label, "free text stored in the CSV row (e.g. the commit)");
+  app.add_option("--start-from", start_from, "build the packing on from this packing CSV (a partly compressed one)");
+  app.add_flag("--allow-1m", allow_1m, "allow building the settle-1M workload");
+  app.add_flag("--no-csv", no_csv, "do not append to the results CSV");
+  CLI11_PARSE(app, argc, argv);
+
+  Packing packing = load_or_make(workload, cache_dir, allow_1m, start_from);
+  std::string name = workload;
+  if (!tile.empty()) {
+    int nx = 1, ny = 1, nz = 1;
+    if (std::sscanf(tile.c_str(), "%dx%dx%d", &nx, &ny, &nz) != 3) {
+      fmt::print(stderr, "--tile wants NXxNYxNZ\n");
+      return 2;
+    }
+    packing = tile_packing(packing, nx, ny, nz);
+    name += "-tile" + tile;
+  }
+  if (!lammps_data.empty()) {
+    write_lammps_data(packing, lammps_data);
+    fmt::print(stderr, "wrote {}\n", lammps_data);
+    return 0;
+  }
+  const long n = static_cast<long>(packing.radius.size());
+  if (steps <= 0) steps = std::max<long>(50, static_cast<long>(2.5e7 / n));
+  const Vec3 gravity = workload == "settle-1M" ? Vec3{0, 0, -9.81} : Vec3{};
+
+  const std::string csv = results_dir + "/" + hostname() + ".csv";
+  if (!no_csv) {
+    std::filesystem::create_directories(results_dir);
+    if (!std::filesystem::exists(csv)) {
+      std::FILE* f = std::fopen(csv.c_str(), "w");
+      std::fprintf(f, "date_utc,version,label,workload,particles,threads,steps,seconds,particle_steps_per_s,"
+                      "ns_per_particle_step,rebuilds,contacts_per_particle,peak_rss_mb,bytes_per_particle,state_hash,list_entries_per_particle\n");
+      std::fclose(f);
+    }
+  }
+  fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}\n", name, n, steps, warmup,
+             grainlab::version_string);
+  fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8}\n", "threads", "rep",
+             "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash", "entries");
+  for (int t : threads) {
+    omp_set_num_threads(t);
+    for (int r = 0; r < reps; ++r) {
+      Simulation sim = make_simulation(packing, gravity);
+      sim.advance(warmup);
+      const long rebuilds0 = sim.rebuild_count();
+      const auto start = std::chrono::steady_clock::now();
+      sim.advance(steps);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double rate = static_cast<double>(n) * steps / seconds;
+      const long rebuilds = sim.rebuild_count() - rebuilds0;
+      // Z: mean number of touching particle-particle contacts per particle (2 C / N).
+      const double z = 2.0 * sim.touching_pair_count() / n;
+      const double rss = peak_rss_mb();
+      const uint64_t hash = state_hash(sim.particles());
+      // entries: half-list entries (pairs within the skin) per particle
+      const double entries = static_cast<double>(sim.pair_contacts().size()) / n;
+      fmt::print("{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f}\n", t, r,
+                 rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries);
+      std::fflush(stdout);
+      if (!no_csv) {
+        std::FILE* f = std::fopen(csv.c_str(), "a");
+        const std::time_t now = std::time(nullptr);
+        char date[32];
+        std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+        std::fprintf(f, "%s,%s,%s,%s,%ld,%d,%ld,%.4f,%.6g,%.2f,%ld,%.4f,%.1f,%.0f,%016llx,%.3f\n", date,
+                     grainlab::version_string, label.c_str(), name.c_str(), n, t, steps, seconds, rate,
+                     1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n,
+                     static_cast<unsigned long long>(hash), entries);
+        std::fclose(f);
+      }
+    }
+  }
+  return 0;
+}
