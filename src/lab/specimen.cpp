@@ -80,6 +80,37 @@ void set_compaction_friction(PairTable& table, const PairTable& original, const 
 
 }  // namespace
 
+HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c, const std::function<bool(const HoldState&)>& on_check) {
+  const double dt = sim.settings().time_step, t_end = sim.time() + c.max_time;
+  std::array<StressServo, 6> servos;
+  for (StressServo& servo : servos) servo = StressServo(ServoSettings{c.confining_stress});
+  HoldState state;
+  while (sim.time() < t_end) {
+    for (long n = 0; n < 200; ++n) {
+      const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
+      for (int k = 0; k < 6; ++k) {
+        servos[k].set_max_speed(c.max_strain_rate * 0.5 * size[k / 2]);
+        set_inward_speed(sim.walls(), k,
+                         servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
+                                          sim.walls()[k].contact_stiffness, dt));
+      }
+      sim.step();
+    }
+    state.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
+    state.max_stress_error = 0.0;
+    for (int k = 0; k < 6; ++k)
+      state.max_stress_error = std::max(state.max_stress_error, std::abs(wall_stress(sim.walls(), k) / c.confining_stress - 1.0));
+    state.unbalanced = unbalanced_force_ratio(sim);
+    const bool may_stop = on_check(state);
+    if (may_stop && state.max_stress_error < c.stress_tolerance && state.unbalanced < c.unbalanced_tolerance) {
+      state.reached = true;
+      break;
+    }
+  }
+  for (Wall& w : sim.walls()) w.velocity = {};
+  return state;
+}
+
 Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress) {
   const PairTable original = table;
   const Placement placement = place_on_jittered_lattice(s);
@@ -105,55 +136,31 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   Simulation sim(std::move(particles), cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);
   bool friction_restored = !s.target_solid_fraction;
-  const double dt = settings.time_step;
-  const long check_every = 200;
-  std::array<StressServo, 6> servos;
-  for (StressServo& servo : servos) servo = StressServo(ServoSettings{s.confining_stress});
-  while (sim.time() < s.max_time) {
-    for (long n = 0; n < check_every; ++n) {
-      const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
-      for (int k = 0; k < 6; ++k) {
-        servos[k].set_max_speed(s.max_strain_rate * 0.5 * size[k / 2]);
-        set_inward_speed(sim.walls(), k,
-                         servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
-                                          sim.walls()[k].contact_stiffness, dt));
-      }
-      sim.step();
-    }
-    const double volume = box_volume(sim.walls());
-    const double phi = solid_fraction(sim.particles(), volume);
-    if (!friction_restored && phi >= *s.target_solid_fraction) {
-      set_compaction_friction(sim.pair_table(), original, s, -1.0);
-      friction_restored = true;
-    }
-    double worst = 0.0;
-    for (int k = 0; k < 6; ++k)
-      worst = std::max(worst, std::abs(wall_stress(sim.walls(), k) / s.confining_stress - 1.0));
-    const double unbalanced = unbalanced_force_ratio(sim);
-    if (progress)
-      progress->update(std::min(1.0, sim.time() / s.max_time),
-                       fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}", phi,
-                                   100 * worst, unbalanced));
-    if (friction_restored && worst < s.stress_tolerance && unbalanced < s.unbalanced_tolerance) {
-      out.equilibrium_reached = true;
-      break;
-    }
-  }
+  const HoldState held = hold_isotropic(
+      sim, HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance, s.unbalanced_tolerance, s.max_time},
+      [&](const HoldState& state) {
+        if (!friction_restored && state.solid_fraction >= *s.target_solid_fraction) {
+          set_compaction_friction(sim.pair_table(), original, s, -1.0);
+          friction_restored = true;
+        }
+        if (progress)
+          progress->update(std::min(1.0, sim.time() / s.max_time),
+                           fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}",
+                                       state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
+        return friction_restored;
+      });
+  out.equilibrium_reached = held.reached;
   out.low = box_low(sim.walls());
   out.high = box_high(sim.walls());
   out.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
   out.coordination_number = coordination_number(sim);
   out.unbalanced_force_ratio = unbalanced_force_ratio(sim);
-  for (int k = 0; k < 6; ++k)
-    out.max_stress_error = std::max(out.max_stress_error, std::abs(wall_stress(sim.walls(), k) / s.confining_stress - 1.0));
+  out.max_stress_error = held.max_stress_error;
   out.simulated_time = sim.time();
   // Particles in id order, at rest (velocities dropped: the specimen is in equilibrium).
   const ParticleStore& p = sim.particles();
-  for (size_t i : indices_by_id(p)) {
-    const double m = 1.0 / p.inverse_mass[i];
-    out.particles.add(p.id[i], p.material[i], p.radius[i], m / (4.0 / 3.0 * std::numbers::pi * std::pow(p.radius[i], 3)),
-                      p.position[i], {}, {}, false);
-  }
+  for (size_t i : indices_by_id(p))
+    out.particles.add(p.id[i], p.material[i], p.radius[i], s.density, p.position[i], {}, {}, false);
   return out;
 }
 

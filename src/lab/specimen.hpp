@@ -10,11 +10,13 @@
 // 0.42); the compression then shrinks the specimen, and the final dimensions are reported.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
 #include "contact/pair_table.hpp"
 #include "core/particles.hpp"
+#include "core/simulation.hpp"
 
 namespace grainlab {
 
@@ -50,6 +52,25 @@ struct Specimen {
   Vec3 inserted_box;                  // m, the box the beads were placed in
   double inserted_solid_fraction = 0.0;
 };
+
+// Holds the six walls of a cuboid specimen (lab/cuboid_box.hpp) at an isotropic stress by servo
+// control until the wall stresses are within stress_tolerance of the target and the unbalanced
+// force ratio is below unbalanced_tolerance, or max_time more has been simulated. `on_check` runs
+// every 200 steps and returns whether the run may stop there (e.g. false while the compaction
+// friction is still being steered).
+struct HoldCriteria {
+  double confining_stress;       // Pa
+  double max_strain_rate;        // 1/s, wall speed cap
+  double stress_tolerance;       // relative
+  double unbalanced_tolerance;
+  double max_time;               // s
+};
+struct HoldState {
+  double solid_fraction = 0.0, max_stress_error = 0.0, unbalanced = 1.0;
+  bool reached = false;
+};
+HoldState hold_isotropic(Simulation& sim, const HoldCriteria& criteria,
+                         const std::function<bool(const HoldState&)>& on_check);
 
 Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress);
 
