@@ -217,17 +217,27 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
   return p;
 }
 
+// Every other copy is mirrored, so that across each interface a bead faces its own mirror image:
+// a wall contact (k_n = pi E r, overlap U) becomes a pair contact (k_n = pi E r/2, overlap 2U)
+// with the same force, and the tiled packing is in the same static equilibrium as the original
+// (plain translated copies do not interlock and the whole packing relaxes, losing its contacts).
 Packing tile_packing(const Packing& p, int nx, int ny, int nz) {
   Packing t;
   const Vec3 size = p.box_hi - p.box_lo;
   t.box_lo = p.box_lo;
   t.box_hi = p.box_lo + Vec3{nx * size.x, ny * size.y, nz * size.z};
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
+  int c[3];
+  for (c[2] = 0; c[2] < nz; ++c[2])
+    for (c[1] = 0; c[1] < ny; ++c[1])
+      for (c[0] = 0; c[0] < nx; ++c[0])
         for (size_t q = 0; q < p.radius.size(); ++q) {
+          Vec3 x = p.position[q];
+          for (int d = 0; d < 3; ++d) {
+            const double local = x[d] - p.box_lo[d];
+            x[d] = p.box_lo[d] + c[d] * size[d] + (c[d] % 2 == 1 ? size[d] - local : local);
+          }
           t.radius.push_back(p.radius[q]);
-          t.position.push_back(p.position[q] + Vec3{i * size.x, j * size.y, k * size.z});
+          t.position.push_back(x);
         }
   return t;
 }
