@@ -1,6 +1,7 @@
 // grainlab: a virtual granular laboratory (DEM). See README.md and docs/.
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <exception>
 #include <vector>
 
@@ -9,6 +10,10 @@
 
 int main(int argc, char** argv) {
   using namespace grainlab::app;
+  // OpenMP threads that busy-wait at barriers collapse when the cores are shared (another job, a
+  // parallel ctest): let idle threads sleep unless the user chose otherwise. Must precede the
+  // first parallel region.
+  setenv("OMP_WAIT_POLICY", "passive", /*overwrite=*/0);
   CLI::App app{"grainlab: discrete element virtual granular laboratory"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("grainlab ") + grainlab::version_string);

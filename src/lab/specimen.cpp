@@ -31,7 +31,7 @@ struct Placement {
 Placement place_on_jittered_lattice(const SpecimenSettings& s) {
   std::mt19937_64 rng(s.seed);
   const double d_max = s.diameter + s.diameter_tolerance;
-  const double spacing = 1.02 * d_max;
+  const double spacing = 1.1 * d_max;
   // Smallest lattice of the nominal aspect ratio with enough sites.
   int n[3];
   for (double scale = 1.0;; scale *= 1.01) {
@@ -62,12 +62,16 @@ Placement place_on_jittered_lattice(const SpecimenSettings& s) {
   return p;
 }
 
-void set_compaction_friction(PairTable& table, const PairTable& original, const SpecimenSettings& s, double mu) {
+// Contact constants while compacting: friction mu (< 0: the measured one) and restitution e
+// (< 0: the measured one). Only the packing's final static state is kept, which does not
+// depend on e, so compaction may dissipate faster than the beads do.
+void set_compaction_contacts(PairTable& table, const PairTable& original, const SpecimenSettings& s, double mu,
+                             double e) {
   for (int other : {s.bead_material, s.lateral_material, s.platen_material}) {
     const PairParams& q = original(s.bead_material, other);
     if (!q.defined) continue;
     PairProperties p;
-    p.restitution = q.restitution;
+    p.restitution = e < 0 ? q.restitution : std::min(e, q.restitution);
     p.friction = mu < 0 ? q.friction : std::min(mu, q.friction);
     p.rns = q.rns;
     p.rzs = q.rzs;
@@ -132,15 +136,20 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   // Steering: compact frictionless until the target solid fraction is reached, then switch the
   // measured friction on so the packing locks in; without a target, the particles' own friction.
   out.compaction_friction = s.target_solid_fraction ? 0.0 : glass.friction;
-  if (s.target_solid_fraction) set_compaction_friction(table, original, s, 0.0);
+  out.compaction_restitution = std::min(s.compaction_restitution, glass.restitution);
+  set_compaction_contacts(table, original, s, s.target_solid_fraction ? 0.0 : -1.0, s.compaction_restitution);
   Simulation sim(std::move(particles), cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);
   bool friction_restored = !s.target_solid_fraction;
   const HoldState held = hold_isotropic(
       sim, HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance, s.unbalanced_tolerance, s.max_time},
       [&](const HoldState& state) {
-        if (!friction_restored && state.solid_fraction >= *s.target_solid_fraction) {
-          set_compaction_friction(sim.pair_table(), original, s, -1.0);
+        const bool settled = state.max_stress_error < s.stress_tolerance && state.unbalanced < s.unbalanced_tolerance;
+        if (!friction_restored && (state.solid_fraction >= *s.target_solid_fraction || settled)) {
+          // Target reached, or the frictionless packing settled below it: it cannot get denser
+          // at this stress, so the target is out of reach (reported).
+          out.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
+          set_compaction_contacts(sim.pair_table(), original, s, -1.0, s.compaction_restitution);
           friction_restored = true;
         }
         if (progress)

@@ -5,7 +5,7 @@
 //
 // Placement: random sequential insertion jams near a solid fraction of 0.35, far below the
 // reference case's 11,636 beads in 35 x 35 x 80 mm (0.50). grainlab therefore places the beads
-// on randomly chosen, randomly jittered sites of a cubic lattice one (largest diameter + 2 %)
+// on randomly chosen, randomly jittered sites of a cubic lattice 1.1 largest diameters
 // apart, in the smallest box of the nominal aspect ratio that holds them (solid fraction about
 // 0.42); the compression then shrinks the specimen, and the final dimensions are reported.
 #pragma once
@@ -33,6 +33,7 @@ struct SpecimenSettings {
   double density = 2500.0;            // kg/m^3
   double dt_fraction = 0.1;
   double max_strain_rate = 10.0;      // 1/s, wall speed cap during compaction
+  double compaction_restitution = 0.3;  // e of every bead contact while compacting (faster rest)
   double stress_tolerance = 0.005;    // equilibrium: wall stresses within 0.5 % of the target
   double unbalanced_tolerance = 1e-4; // and mean unbalanced / mean contact force below this
   double max_time = 0.5;              // s simulated at most
@@ -47,7 +48,9 @@ struct Specimen {
   double unbalanced_force_ratio = 0.0;
   double max_stress_error = 0.0;      // relative, over the six walls
   double compaction_friction = 0.0;   // friction used while compacting
+  double compaction_restitution = 0.0;
   bool equilibrium_reached = false;
+  bool target_reached = true;         // false: the target solid fraction was out of reach
   double simulated_time = 0.0;        // s
   Vec3 inserted_box;                  // m, the box the beads were placed in
   double inserted_solid_fraction = 0.0;

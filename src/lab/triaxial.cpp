@@ -37,7 +37,9 @@ nlohmann::json specimen_json(const Specimen& s) {
           {"unbalanced_force_ratio", s.unbalanced_force_ratio},
           {"max_wall_stress_error", s.max_stress_error},
           {"compaction_friction", s.compaction_friction},
+          {"compaction_restitution", s.compaction_restitution},
           {"equilibrium_reached", s.equilibrium_reached},
+          {"target_solid_fraction_reached", s.target_reached},
           {"simulated_time_s", s.simulated_time}};
 }
 

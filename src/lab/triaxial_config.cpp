@@ -67,6 +67,9 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   if (!(p.dt_fraction > 0 && p.dt_fraction <= 0.3)) t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
   p.max_strain_rate = t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
   p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
+  p.compaction_restitution = t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
+  if (!(p.compaction_restitution > 0 && p.compaction_restitution <= 1))
+    t.fail("compaction_restitution", "expected a restitution coefficient in (0, 1]");
   p.seed = static_cast<uint64_t>(t.integer_or("seed", 1));
   if (t.has("specimen")) s.specimen_file = t.string("specimen");
   const std::string loading = t.string_or("loading", "inertial");

@@ -37,5 +37,39 @@ def unknown_test_type():
         assert not os.path.exists(os.path.join(d, "o"))
 
 
+TRIAXIAL = open(os.path.join(SRC, "examples/triaxial/small.toml")).read()
+
+
+def expect_bad_triaxial(old, new, *fragments):
+    assert old in TRIAXIAL, old
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "tri.toml")
+        open(path, "w").write(TRIAXIAL.replace(old, new, 1))
+        for command in (["run"], ["prepare"]):
+            r = run(*command, path, "--out", os.path.join(d, "o"))
+            assert r.returncode == 2, (r.returncode, r.stderr)
+            for f in ("tri.toml",) + fragments:
+                assert f in r.stderr, (f, r.stderr)
+            assert not os.path.exists(os.path.join(d, "o"))
+        print("refused:", r.stderr.strip())
+
+
+def triaxial_negative_pressure():
+    expect_bad_triaxial('confining_stress = "150 kPa"', 'confining_stress = "-150 kPa"', "test.confining_stress", "> 0")
+
+
+def triaxial_box_smaller_than_particle():
+    expect_bad_triaxial('box = ["14 mm", "14 mm", "28 mm"]', 'box = ["1 mm", "14 mm", "28 mm"]', "test.box",
+                        "two particle diameters")
+
+
+def triaxial_more_particles_than_fit():
+    expect_bad_triaxial("count = 500", "count = 5000", "test.count", "more particles than fit")
+
+
+def triaxial_unknown_key():
+    expect_bad_triaxial("count = 500", "count = 500\nconfinig_stress = 1", "test.confinig_stress", "unknown key")
+
+
 globals()[CHECK]()
 print("ok:", CHECK)
