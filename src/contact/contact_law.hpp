@@ -31,16 +31,26 @@ struct ContactResponse {
   double normal_force;      // F_n, N
 };
 
-// lever_a, lever_b: distance from each centre to the contact point; effective_inertia I* in
-// kg m^2; contact_radius a (Eq. 10, m), used only by the rolling and twisting pieces.
+// k_n = pi E r* (Eq. 4) and c_n = 2 zeta sqrt(k_n m*) (Eq. 7 corrected) of one contact. They
+// depend only on the two bodies, so the particle-pair loop takes them from the contact store
+// (computed when the neighbour list is built) instead of evaluating them every step.
+inline NormalParams normal_params(const PairParams& pair, double effective_radius, double effective_mass) {
+  const double k_n = pair.stiffness_per_radius * effective_radius;
+  return {k_n, 2.0 * pair.damping_ratio * std::sqrt(k_n * effective_mass)};
+}
+
+// normal: k_n and c_n of this contact (normal_params); lever_a, lever_b: distance from each
+// centre to the contact point; effective_inertia I* in kg m^2; contact_radius a (Eq. 10, m), used
+// only by the rolling and twisting pieces. k.effective_radius is read only by those pieces and the
+// rolling-force piece; k.effective_mass is not read.
 template <bool Rolling, bool Twisting, bool RollingForce>
-inline ContactResponse contact_response(const PairParams& pair, const ContactKinematics& k,
-                                        double lever_a, double lever_b, double effective_inertia,
-                                        double contact_radius, double dt, ContactHistoryRef h) {
+inline ContactResponse contact_response(const PairParams& pair, const NormalParams& normal,
+                                        const ContactKinematics& k, double lever_a, double lever_b,
+                                        double effective_inertia, double contact_radius, double dt,
+                                        ContactHistoryRef h) {
   const Vec3& n = k.normal;
-  const NormalParams normal{pair.stiffness_per_radius * k.effective_radius, 0.0};
-  const double c_n = 2.0 * pair.damping_ratio * std::sqrt(normal.stiffness * k.effective_mass);
-  const double f_n = normal_force({normal.stiffness, c_n}, k.overlap, k.overlap_rate);
+  const double c_n = normal.damping;
+  const double f_n = normal_force(normal, k.overlap, k.overlap_rate);
 
   const SlidingParams sliding{pair.rns * normal.stiffness, pair.rzs * c_n, pair.friction};
   keep_in_tangent_plane(*h.sliding_spring, n);

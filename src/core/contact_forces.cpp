@@ -53,8 +53,7 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       ContactKinematics k;
       k.normal = (1.0 / dist) * d;
       k.overlap = reach - dist;
-      k.effective_radius = ri * rj / reach;
-      k.effective_mass = 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]);
+      if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
@@ -67,8 +66,9 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
-      const ContactResponse r = contact_response<R, T, RF>(row_params[p.material[j]], k, lever_i,
-                                                           lever_j, inertia, contact_radius, dt, h);
+      const ContactResponse r =
+          contact_response<R, T, RF>(row_params[p.material[j]], {c.normal_stiffness[e], c.normal_damping[e]}, k,
+                                     lever_i, lever_j, inertia, contact_radius, dt, h);
       c.force_on_first[e] = r.force_on_a;
       c.torque_on_first[e] = r.torque_on_a;
       c.torque_on_second[e] = r.torque_on_b;
@@ -120,8 +120,9 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
+      const PairParams& pair = table(p.material[i], w.material);
       const ContactResponse resp = contact_response<R, T, RF>(
-          table(p.material[i], w.material), k, lever, 0.0, inertia, contact_radius, dt, h);
+          pair, normal_params(pair, k.effective_radius, k.effective_mass), k, lever, 0.0, inertia, contact_radius, dt, h);
       c.force_on_particle[e] = resp.force_on_a;
       c.torque_on_particle[e] = resp.torque_on_a;
       c.normal_stiffness[e] = resp.normal_stiffness;
@@ -163,6 +164,24 @@ struct WallKernel {
 };
 
 }  // namespace
+
+void Simulation::refresh_contact_constants() {
+  const ParticleStore& p = particles_;
+  PairContacts& c = pairs_;
+  c.normal_stiffness.resize(c.size());
+  c.normal_damping.resize(c.size());
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i)
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const uint32_t j = c.partner[e];
+      const NormalParams q =
+          normal_params(table_(p.material[i], p.material[j]), p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]),
+                        1.0 / (p.inverse_mass[i] + p.inverse_mass[j]));
+      c.normal_stiffness[e] = q.stiffness;
+      c.normal_damping[e] = q.damping;
+    }
+}
 
 void Simulation::compute_pair_forces() {
   max_overlap_fraction_ =

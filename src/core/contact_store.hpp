@@ -26,6 +26,9 @@ struct PairContacts {
   std::vector<Vec3> rolling_angle;
   std::vector<double> twisting_angle;
   std::vector<Vec3> rolling_force_displacement;
+  // constants of each entry, set when the list is built (Simulation::refresh_contact_constants)
+  std::vector<double> normal_stiffness;  // k_n, N/m
+  std::vector<double> normal_damping;    // c_n, N s/m
   // results of the last force computation
   std::vector<Vec3> force_on_first;    // N
   std::vector<Vec3> torque_on_first;   // N m

@@ -16,14 +16,18 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
       neighbors_(settings.skin) {
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time step must be > 0");
   if (!(settings_.skin > 0.0)) throw std::invalid_argument("Verlet skin must be > 0");
-  neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
+  rebuild_neighbors();
   compute_forces();
+}
+
+void Simulation::rebuild_neighbors() {
+  neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
+  refresh_contact_constants();
 }
 
 void Simulation::step() {
   kick_and_drift();
-  if (neighbors_.needs_rebuild(particles_, walls_))
-    neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
+  if (neighbors_.needs_rebuild(particles_, walls_)) rebuild_neighbors();
   compute_forces();
   half_kick();
   time_ += settings_.time_step;

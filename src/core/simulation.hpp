@@ -50,9 +50,10 @@ class Simulation {
   std::vector<Wall>& walls() { return walls_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const PairTable& pair_table() const { return table_; }
-  // Material-pair constants may change between steps (e.g. friction during compaction); which
-  // optional pieces exist is fixed at construction.
+  // Material-pair constants may change between steps (e.g. friction during compaction); call
+  // pair_table_changed() afterwards. Which optional pieces exist is fixed at construction.
   PairTable& pair_table() { return table_; }
+  void pair_table_changed() { refresh_contact_constants(); }
   const PairContacts& pair_contacts() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }
@@ -66,6 +67,8 @@ class Simulation {
   void half_kick();
   void compute_forces();
   void compute_pair_forces();
+  void rebuild_neighbors();
+  void refresh_contact_constants();
   void compute_wall_forces();
   void gather();
   void check_health() const;

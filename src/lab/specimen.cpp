@@ -150,6 +150,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
           // at this stress, so the target is out of reach (reported).
           out.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
           set_compaction_contacts(sim.pair_table(), original, s, -1.0, s.compaction_restitution);
+          sim.pair_table_changed();
           friction_restored = true;
         }
         if (progress)

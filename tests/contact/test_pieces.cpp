@@ -101,7 +101,8 @@ TEST(ContactLaw, HeadOnPairForceAndTorques) {
   EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
   Vec3 spring;
   const double dt = 1e-7;
-  const ContactResponse r = contact_response<false, false, false>(pair, k, 1e-3, 1e-3, 0.0, 0.0, dt,
+  const ContactResponse r = contact_response<false, false, false>(pair, normal_params(pair, k.effective_radius, k.effective_mass),
+                                                                   k, 1e-3, 1e-3, 0.0, 0.0, dt,
                                                                    {&spring, nullptr, nullptr, nullptr});
   const double kn = 1e8 * 5e-4, cn = 2 * 0.1 * std::sqrt(kn * 1e-5);
   const double fn = kn * 1e-5 + cn * 0.01;
