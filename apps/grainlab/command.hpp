@@ -1,5 +1,6 @@
 // A subcommand of the grainlab program: its CLI11 subcommand and what runs when it was chosen.
-// Exit codes: 0 success, 1 run failed (e.g. blew up), 2 bad input (config, data file, options).
+// Exit codes: 0 success, 1 run failed (e.g. blew up), 2 bad input (config, data file, options),
+// 130 interrupted (a checkpoint was written where the run can resume).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,7 @@ namespace grainlab::app {
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_failed = 1;
 inline constexpr int exit_bad_input = 2;
+inline constexpr int exit_interrupted = 130;  // Ctrl-C / SIGTERM: checkpoint written
 
 struct Command {
   CLI::App* subcommand;

@@ -36,6 +36,12 @@ struct PairContacts {
   std::vector<double> normal_force;    // N (0 when not touching)
 
   size_t size() const { return partner.size(); }
+  template <class Io>
+  void for_each_field(Io&& io) {
+    io(row_start), io(partner), io(col_start), io(col_pair), io(sliding_spring), io(rolling_angle),
+        io(twisting_angle), io(rolling_force_displacement), io(normal_stiffness), io(normal_damping),
+        io(force_on_first), io(torque_on_first), io(torque_on_second), io(normal_force);
+  }
 };
 
 // Particle-wall candidates, CSR by particle: walls wall[row_start[i] .. row_start[i+1]).
@@ -52,6 +58,12 @@ struct WallContacts {
   std::vector<double> normal_force;      // N
 
   size_t size() const { return wall.size(); }
+  template <class Io>
+  void for_each_field(Io&& io) {
+    io(row_start), io(wall), io(sliding_spring), io(rolling_angle), io(twisting_angle),
+        io(rolling_force_displacement), io(force_on_particle), io(torque_on_particle), io(normal_stiffness),
+        io(normal_force);
+  }
 };
 
 }  // namespace grainlab

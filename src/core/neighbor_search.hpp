@@ -29,6 +29,12 @@ class NeighborSearch {
                WallContacts& wall_contacts, ContactPieces pieces);
 
   double skin() const { return skin_; }
+  // What decides the next rebuild (the cell grid is made anew at every rebuild).
+  template <class Io>
+  void for_each_field(Io&& io) {
+    io(position_at_build_), io(wall_point_at_build_);
+  }
+  long& rebuild_count_ref() { return rebuild_count_; }
   long rebuild_count() const { return rebuild_count_; }
 
  private:

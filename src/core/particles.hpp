@@ -55,6 +55,13 @@ struct ParticleStore {
 
   // Reorders every field so that new index k holds the particle at old index order[k].
   void permute(const std::vector<uint32_t>& order);
+
+  // Every field, for checkpoints (core/state_io.hpp).
+  template <class Io>
+  void for_each_field(Io&& io) {
+    io(position), io(velocity), io(angular_velocity), io(force), io(torque), io(radius), io(inverse_mass),
+        io(inverse_inertia), io(material), io(id), io(rotation), io(initial_position);
+  }
 };
 
 }  // namespace grainlab

@@ -161,3 +161,74 @@ long Simulation::touching_pair_count() const {
 }
 
 }  // namespace grainlab
+
+namespace grainlab {
+namespace {
+
+void write_walls(StateWriter& out, const std::vector<Wall>& walls) {
+  out.value<uint64_t>(walls.size());
+  for (const Wall& w : walls) {
+    out.text(w.name);
+    out.value(w.shape), out.value(w.material), out.value(w.point), out.value(w.normal), out.value(w.axis_u);
+    out.value(w.axis_v), out.value(w.half_u), out.value(w.half_v), out.value(w.axis), out.value(w.radius);
+    out.value(w.velocity), out.value(w.mass), out.value(w.external_force), out.value(w.force);
+    out.value(w.contact_stiffness), out.value(w.contact_count);
+  }
+}
+
+std::vector<Wall> read_walls(StateReader& in) {
+  std::vector<Wall> walls(in.value<uint64_t>());
+  for (Wall& w : walls) {
+    w.name = in.text();
+    w.shape = in.value<WallShape>(), w.material = in.value<int>(), w.point = in.value<Vec3>();
+    w.normal = in.value<Vec3>(), w.axis_u = in.value<Vec3>(), w.axis_v = in.value<Vec3>();
+    w.half_u = in.value<double>(), w.half_v = in.value<double>(), w.axis = in.value<Vec3>();
+    w.radius = in.value<double>(), w.velocity = in.value<Vec3>(), w.mass = in.value<double>();
+    w.external_force = in.value<Vec3>(), w.force = in.value<Vec3>(), w.contact_stiffness = in.value<double>();
+    w.contact_count = in.value<int>();
+  }
+  return walls;
+}
+
+constexpr uint64_t state_magic = 0x67726e6c61623031;  // "grnlab01"
+
+}  // namespace
+
+void Simulation::save_state(StateWriter& out) const {
+  out.value(state_magic);
+  out.value(settings_);
+  out.value(pieces_);
+  out.array(table_.entries());
+  auto write = [&](const auto& field) { out.array(field); };
+  const_cast<ParticleStore&>(particles_).for_each_field(write);
+  write_walls(out, walls_);
+  const_cast<PairContacts&>(pairs_).for_each_field(write);
+  const_cast<WallContacts&>(wall_contacts_).for_each_field(write);
+  const_cast<NeighborSearch&>(neighbors_).for_each_field(write);
+  out.value(const_cast<NeighborSearch&>(neighbors_).rebuild_count_ref());
+  out.value(time_), out.value(step_count_), out.value(max_overlap_fraction_), out.value(max_speed2_);
+}
+
+Simulation::Simulation(StateReader& in, PairTable table)
+    : table_(std::move(table)), neighbors_(1.0) {
+  if (in.value<uint64_t>() != state_magic) throw std::runtime_error("not a grainlab simulation state");
+  settings_ = in.value<SimulationSettings>();
+  pieces_ = in.value<ContactPieces>();
+  std::vector<PairParams> entries;
+  in.array(entries);
+  if (entries.size() != table_.entries().size())
+    throw std::runtime_error("the checkpoint's materials do not match the configuration");
+  table_.restore_entries(entries);
+  neighbors_ = NeighborSearch(settings_.skin);
+  auto read = [&](auto& field) { in.array(field); };
+  particles_.for_each_field(read);
+  walls_ = read_walls(in);
+  pairs_.for_each_field(read);
+  wall_contacts_.for_each_field(read);
+  neighbors_.for_each_field(read);
+  neighbors_.rebuild_count_ref() = in.value<long>();
+  time_ = in.value<double>(), step_count_ = in.value<long>();
+  max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
+}
+
+}  // namespace grainlab

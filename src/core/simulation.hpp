@@ -13,6 +13,7 @@
 #include "core/contact_store.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/particles.hpp"
+#include "core/state_io.hpp"
 #include "geometry/wall.hpp"
 
 namespace grainlab {
@@ -36,6 +37,10 @@ class Simulation {
  public:
   Simulation(ParticleStore particles, std::vector<Wall> walls, PairTable table,
              SimulationSettings settings);
+
+  // Restores a simulation saved by save_state; `table` must have the same materials.
+  Simulation(StateReader& state, PairTable table);
+  void save_state(StateWriter& state) const;
 
   void step();
   void advance(long steps) {

@@ -23,9 +23,14 @@ struct TriaxialSettings {
   double output_strain_interval = 0.001;
   bool vtk = false;
   double vtk_strain_interval = 0.01;
+  double checkpoint_interval = 300.0;  // s of wall time between checkpoints
 };
 
 void run_triaxial(const std::string& config_path, const toml::table& root, const RunOptions& options);
+
+// `grainlab run --resume DIR`: continues an interrupted triaxial run from DIR/checkpoint.bin and
+// produces the same files as an uninterrupted run.
+void resume_triaxial(const RunOptions& options);
 
 // `grainlab prepare CONFIG --out DIR`: the preparation of a triaxial config alone.
 void run_prepare(const std::string& config_path, const RunOptions& options);

@@ -87,6 +87,8 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   if (!(s.max_axial_strain > 0 && s.max_axial_strain < 0.5)) t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
   s.output_strain_interval = t.number_or("output_strain_interval", Quantity::dimensionless, s.output_strain_interval);
   if (!(s.output_strain_interval > 0)) t.fail("output_strain_interval", "expected a strain interval > 0");
+  s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
+  if (!(s.checkpoint_interval > 0)) t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
   s.vtk = t.boolean_or("vtk", false);
   s.vtk_strain_interval = t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
   t.finish();

@@ -71,5 +71,75 @@ def triaxial_unknown_key():
     expect_bad_triaxial("count = 500", "count = 500\nconfinig_stress = 1", "test.confinig_stress", "unknown key")
 
 
+TINY = TRIAXIAL.replace("count = 500", "count = 250").replace(
+    'box = ["14 mm", "14 mm", "28 mm"]', 'box = ["10 mm", "10 mm", "20 mm"]').replace(
+    "max_axial_strain = 0.10", "max_axial_strain = 0.04")
+
+
+def prepared_tiny(d, extra=""):
+    spec = os.path.join(d, "spec")
+    path = os.path.join(d, "tiny.toml")
+    open(path, "w").write(TINY)
+    r = run("prepare", path, "--out", spec, "--quiet", "--threads", "1")
+    assert r.returncode == 0, r.stderr
+    path = os.path.join(d, "tri.toml")
+    open(path, "w").write(TINY.replace("count = 250", f'count = 250\nspecimen = "{spec}"\n{extra}'))
+    return path
+
+
+def compare_runs(a, b):
+    assert open(os.path.join(a, "curve.csv")).read() == open(os.path.join(b, "curve.csv")).read(), "curve differs"
+    sa, sb = json.load(open(os.path.join(a, "summary.json"))), json.load(open(os.path.join(b, "summary.json")))
+    differ = [k for k in sa if sa[k] != sb[k] and not k.endswith("wall_time_s")]
+    assert not differ, differ
+    assert not os.path.exists(os.path.join(b, "checkpoint.bin"))
+
+
+def triaxial_interrupt_and_resume():
+    import signal
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d)
+        a, b = os.path.join(d, "a"), os.path.join(d, "b")
+        r = run("run", path, "--out", a, "--quiet", "--threads", "1")
+        assert r.returncode == 0, r.stderr
+        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"], stderr=subprocess.PIPE, text=True)
+        time.sleep(2.0)
+        p.send_signal(signal.SIGINT)
+        err = p.communicate(timeout=120)[1]
+        assert p.returncode == 130, (p.returncode, err, "the run must still be shearing after 2 s")
+        assert "--resume" in err and os.path.exists(os.path.join(b, "checkpoint.bin")), err
+        assert not os.path.exists(os.path.join(b, "curve.csv")), "no complete-looking curve before the end"
+        r = run("run", "--resume", b, "--quiet", "--threads", "2")  # any thread count
+        assert r.returncode == 0, r.stderr
+        compare_runs(a, b)
+
+
+def triaxial_periodic_checkpoint_survives_kill():
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d, 'checkpoint_interval = "0.5 s"')
+        a, b = os.path.join(d, "a"), os.path.join(d, "b")
+        assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
+        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
+        for _ in range(400):
+            if os.path.exists(os.path.join(b, "checkpoint.bin")):
+                break
+            time.sleep(0.01)
+        time.sleep(0.3)
+        p.kill()  # no chance to write anything more
+        p.wait()
+        assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
+        r = run("run", "--resume", b, "--quiet")
+        assert r.returncode == 0, r.stderr
+        compare_runs(a, b)
+
+
+def resume_without_checkpoint():
+    with tempfile.TemporaryDirectory() as d:
+        r = run("run", "--resume", d)
+        assert r.returncode == 2 and "checkpoint" in r.stderr, r.stderr
+
+
 globals()[CHECK]()
 print("ok:", CHECK)

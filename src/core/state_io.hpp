@@ -1,0 +1,73 @@
+// Binary state for checkpoints: plain values and arrays of trivially copyable values, appended to
+// a byte string, read back in the same order. A reader that runs past the end throws, so a
+// truncated or foreign file is refused rather than half-restored.
+#pragma once
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace grainlab {
+
+class StateWriter {
+ public:
+  template <class T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    value<uint64_t>(v.size());
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void text(const std::string& s) {
+    value<uint64_t>(s.size());
+    bytes_.append(s);
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class StateReader {
+ public:
+  explicit StateReader(std::string bytes) : bytes_(std::move(bytes)) {}
+  template <class T>
+  T value() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T v;
+    std::memcpy(&v, take(sizeof(T)), sizeof(T));
+    return v;
+  }
+  template <class T>
+  void array(std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const uint64_t n = value<uint64_t>();
+    if (n > (bytes_.size() - at_) / (sizeof(T) ? sizeof(T) : 1)) throw std::runtime_error("checkpoint truncated");
+    v.resize(n);
+    std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
+  }
+  std::string text() {
+    const uint64_t n = value<uint64_t>();
+    const char* p = take(n);
+    return std::string(p, n);
+  }
+  bool at_end() const { return at_ == bytes_.size(); }
+
+ private:
+  const char* take(size_t n) {
+    if (n > bytes_.size() - at_) throw std::runtime_error("checkpoint truncated");
+    const char* p = bytes_.data() + at_;
+    at_ += n;
+    return p;
+  }
+  std::string bytes_;
+  size_t at_ = 0;
+};
+
+}  // namespace grainlab

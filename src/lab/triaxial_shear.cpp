@@ -1,0 +1,167 @@
+#include "lab/triaxial_shear.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/config_error.hpp"
+#include "io/output_files.hpp"
+#include "lab/cuboid_box.hpp"
+#include "lab/interrupt.hpp"
+#include "measure/specimen_state.hpp"
+
+namespace grainlab {
+namespace {
+
+constexpr uint64_t checkpoint_magic = 0x67726e6c74726931;  // "grnltri1"
+
+// One row of curve.csv, and the running peaks and errors.
+void record(ShearRun& run) {
+  Simulation& sim = run.sim;
+  ShearProgress& p = run.progress;
+  const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
+  const double axial_strain = (p.size0.z - size.z) / p.size0.z;
+  const double volume = size.x * size.y * size.z, volume0 = p.size0.x * p.size0.y * p.size0.z;
+  const Tensor3 sigma = love_weber_stress(sim, volume);
+  const double sa = 0.5 * (wall_stress(sim.walls(), bottom) + wall_stress(sim.walls(), top));
+  const double sx = 0.5 * (wall_stress(sim.walls(), x_low) + wall_stress(sim.walls(), x_high));
+  const double sy = 0.5 * (wall_stress(sim.walls(), y_low) + wall_stress(sim.walls(), y_high));
+  const double deviator = sa - 0.5 * (sx + sy), mean = (sa + sx + sy) / 3.0;
+  const double inertial = inertial_number(p.strain_rate, p.diameter, p.density, mean);
+  run.curve_rows += fmt::format(
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()), exact(axial_strain),
+      exact((p.size0.x - size.x) / p.size0.x), exact((p.size0.y - size.y) / p.size0.y), exact(1.0 - volume / volume0),
+      exact(sa), exact(sx), exact(sy), exact(sigma[2][2]), exact(sigma[0][0]), exact(sigma[1][1]), exact(deviator),
+      exact(mean), exact(deviator / mean), exact(solid_fraction(sim.particles(), volume)),
+      exact(coordination_number(sim)), exact(inertial), exact(unbalanced_force_ratio(sim)));
+  if (p.step > 0) {
+    p.max_inertial = std::max(p.max_inertial, inertial);
+    for (int k = 0; k < 4; ++k) {
+      const double e = wall_stress(sim.walls(), k) / p.confining_stress - 1.0;
+      p.lateral_error2 += e * e;
+      ++p.lateral_samples;
+    }
+    if (axial_strain > 0.005) p.worst_agreement = std::max(p.worst_agreement, std::abs(sigma[2][2] - sa) / sa);
+  }
+  if (sa > p.peak_axial) p.peak_axial = sa, p.peak_strain = axial_strain;
+  p.peak_deviator = std::max(p.peak_deviator, deviator);
+  p.peak_ratio = std::max(p.peak_ratio, deviator / mean);
+  p.last_axial = sa;
+  p.last_strain = axial_strain;
+}
+
+void write_curve(const ShearRun& run, const std::string& dir) {
+  write_file_atomically(dir + "/curve.csv.partial", std::string(curve_header) + "\n" + run.curve_rows);
+}
+
+}  // namespace
+
+void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, Progress& progress) {
+  Simulation& sim = run.sim;
+  ShearProgress& p = run.progress;
+  std::array<StressServo, 4> servos;
+  for (int k = 0; k < 4; ++k) {
+    servos[k] = StressServo(ServoSettings{p.confining_stress, 2.0 * p.platen_speed});
+    servos[k].set_integral(p.servo_integral[k]);
+  }
+  const double dt = sim.settings().time_step;
+  const auto session_start = std::chrono::steady_clock::now();
+  auto last_checkpoint = session_start;
+  auto checkpoint = [&] {
+    for (int k = 0; k < 4; ++k) p.servo_integral[k] = servos[k].integral();
+    const double before = p.wall_time_before;
+    p.wall_time_before += std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+    write_curve(run, dir);
+    save_checkpoint(run, dir + "/checkpoint.bin");
+    p.wall_time_before = before;
+    last_checkpoint = std::chrono::steady_clock::now();
+  };
+  for (;; ++p.step) {
+    const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
+    const double axial_strain = (p.size0.z - size.z) / p.size0.z;
+    if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 || p.step == p.total_steps) {
+      ++p.next_output;
+      record(run);
+      progress.update(static_cast<double>(p.step) / p.total_steps,
+                      fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa", 100 * axial_strain,
+                                  1e-3 * p.last_axial));
+    }
+    if (p.step == p.total_steps) break;
+    if (interrupt_requested()) {
+      checkpoint();
+      throw Interrupted(fmt::format("interrupted at axial strain {:.2f} %; checkpoint written, continue with: "
+                                    "grainlab run --resume {}",
+                                    100 * axial_strain, dir));
+    }
+    if (p.step % 1000 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() > checkpoint_interval_s)
+      checkpoint();
+    for (int k = 0; k < 4; ++k)
+      set_inward_speed(sim.walls(), k,
+                       servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
+                                        sim.walls()[k].contact_stiffness, dt));
+    set_inward_speed(sim.walls(), bottom, p.platen_speed);
+    set_inward_speed(sim.walls(), top, p.platen_speed);
+    sim.step();
+  }
+  p.wall_time_before += std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+  write_curve(run, dir);
+  std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
+  std::error_code ec;
+  std::filesystem::remove(dir + "/checkpoint.bin", ec);
+}
+
+void save_checkpoint(const ShearRun& run, const std::string& path) {
+  StateWriter out;
+  out.value(checkpoint_magic);
+  out.text(run.config_path);
+  out.text(run.config_text);
+  out.value(run.progress);
+  out.text(run.curve_rows);
+  out.text(run.run_info);
+  run.sim.save_state(out);
+  write_file_atomically(path, out.bytes());
+}
+
+namespace {
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+void peek_checkpoint_config(const std::string& path, std::string& config_path, std::string& config_text) {
+  StateReader in(read_all(path));
+  try {
+    if (in.value<uint64_t>() != checkpoint_magic) throw std::runtime_error("not a grainlab triaxial checkpoint");
+    config_path = in.text();
+    config_text = in.text();
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: {}", path, e.what()));
+  }
+}
+
+ShearRun load_checkpoint(const std::string& path, PairTable table) {
+  StateReader in(read_all(path));
+  try {
+    if (in.value<uint64_t>() != checkpoint_magic) throw std::runtime_error("not a grainlab triaxial checkpoint");
+    std::string config_path = in.text(), config_text = in.text();
+    const ShearProgress progress = in.value<ShearProgress>();
+    std::string rows = in.text(), info = in.text();
+    Simulation sim(in, std::move(table));
+    if (!in.at_end()) throw std::runtime_error("trailing data");
+    return ShearRun{std::move(sim), progress, std::move(rows), std::move(info), std::move(config_path),
+                    std::move(config_text)};
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
+  }
+}
+
+}  // namespace grainlab

@@ -1,0 +1,51 @@
+// The shearing stage of the triaxial test as a resumable loop: everything it carries from step
+// to step (the simulation, the servo integrals, the running peaks and error sums, the curve so
+// far) is in ShearRun, which a checkpoint saves whole and restores exactly.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "control/stress_servo.hpp"
+#include "core/simulation.hpp"
+#include "io/progress.hpp"
+
+namespace grainlab {
+
+struct ShearProgress {  // plain values, saved as they are
+  long step = 0, total_steps = 0, next_output = 0, lateral_samples = 0;
+  double platen_speed = 0, strain_rate = 0, confining_stress = 0, diameter = 0, density = 0;
+  double output_strain_interval = 0;
+  Vec3 size0;
+  double peak_axial = 0, peak_strain = 0, peak_deviator = 0, peak_ratio = 0, max_inertial = 0;
+  double lateral_error2 = 0, worst_agreement = 0, last_axial = 0, last_strain = 0;
+  double wall_time_before = 0;  // s spent in earlier sessions of this run
+  std::array<double, 4> servo_integral{};
+};
+
+struct ShearRun {
+  Simulation sim;
+  ShearProgress progress;
+  std::string curve_rows;     // curve.csv rows written so far (without header)
+  std::string run_info;       // JSON text of what the summary needs from before the shearing
+  std::string config_path, config_text;
+};
+
+inline constexpr const char* curve_header =
+    "time_s,axial_strain,lateral_strain_x,lateral_strain_y,volumetric_strain,"
+    "axial_stress_walls_Pa,lateral_stress_x_walls_Pa,lateral_stress_y_walls_Pa,"
+    "axial_stress_particles_Pa,lateral_stress_x_particles_Pa,lateral_stress_y_particles_Pa,"
+    "deviator_stress_Pa,mean_stress_Pa,stress_ratio,solid_fraction,coordination_number,"
+    "inertial_number,unbalanced_force_ratio";
+
+// Runs the shearing to its end. Writes DIR/checkpoint.bin every `checkpoint_interval_s` of wall
+// time and, on Ctrl-C / SIGTERM, a last one before throwing Interrupted.
+void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, Progress& progress);
+
+void save_checkpoint(const ShearRun& run, const std::string& path);
+// Throws ConfigError for a missing or damaged checkpoint.
+ShearRun load_checkpoint(const std::string& path, PairTable table);
+// The config stored in a checkpoint (to rebuild the pair table before load_checkpoint).
+void peek_checkpoint_config(const std::string& path, std::string& config_path, std::string& config_text);
+
+}  // namespace grainlab
