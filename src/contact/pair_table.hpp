@@ -44,6 +44,10 @@ class PairTable {
   const Material& material(int i) const { return materials_[i]; }
   int find(const std::string& name) const;  // -1 if unknown
 
+  // The derived constants of every pair (checkpoints).
+  const std::vector<PairParams>& entries() const { return table_; }
+  void restore_entries(const std::vector<PairParams>& entries) { table_ = entries; }
+
   // Which optional pieces some pair switches on (the force loop is compiled per combination).
   ContactPieces pieces() const;
 

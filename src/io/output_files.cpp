@@ -31,7 +31,8 @@ void prepare_output_dir(const std::string& dir, bool overwrite) {
         const std::string name = entry.path().filename().string();
         const std::string ext = entry.path().extension().string();
         if (name == "summary.json" || name == "trace.csv" || name == "final.csv" ||
-            name == "particles.pvd" || name == "curve.csv" || name == "curve.png" ||
+            name == "particles.pvd" || name == "curve.csv" || name == "curve.png" || name == "specimen.csv" ||
+            name == "specimen.json" || name == "trajectory.csv" || name == "force_time.csv" ||
             name.ends_with(".partial") || name == "vtk" || name == "checkpoint.bin" || ext == ".tmp")
           fs::remove_all(entry.path(), ec);
       }
@@ -109,7 +110,7 @@ void vector_array(std::string& out, const char* name, const std::vector<size_t>&
 }
 }  // namespace
 
-std::string particles_vtu(const ParticleStore& p) {
+std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count) {
   const std::vector<size_t> order = indices_by_id(p);
   const size_t n = p.size();
   std::string out =
@@ -124,6 +125,11 @@ std::string particles_vtu(const ParticleStore& p) {
   out += "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n";
   for (size_t i : order) out += fmt::format("{}\n", p.material[i]);
   out += "        </DataArray>\n";
+  if (contact_count) {
+    out += "        <DataArray type=\"Int32\" Name=\"contacts\" format=\"ascii\">\n";
+    for (size_t i : order) out += fmt::format("{}\n", (*contact_count)[i]);
+    out += "        </DataArray>\n";
+  }
   vector_array(out, "velocity", order, [&](size_t i) { return p.velocity[i]; });
   vector_array(out, "angular_velocity", order, [&](size_t i) { return p.angular_velocity[i]; });
   vector_array(out, "displacement", order, [&](size_t i) { return p.position[i] - p.initial_position[i]; });

@@ -49,7 +49,8 @@ std::vector<size_t> indices_by_id(const ParticleStore& p);
 
 // One VTK UnstructuredGrid (.vtu) of the particles as points, with radius, velocity, angular
 // velocity, displacement since the start, accumulated rotation, id and material.
-std::string particles_vtu(const ParticleStore& p);
+// `contact_count` (per particle index, optional) adds a "contacts" array.
+std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count = nullptr);
 
 // A .vtu of the walls: planes and rectangles as quads, cylinders as a ring of quads, sized to
 // `extent` (m) where the wall itself is unbounded.

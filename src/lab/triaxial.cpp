@@ -149,7 +149,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   ShearRun run{Simulation(specimen.particles,
                           cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material), c.table,
                           settings),
-               {}, {}, {}, path, read_text(path)};
+               {}, {}, {}, {}, path, read_text(path)};
   Simulation& sim = run.sim;
   // A specimen is stored without contact history (tangential springs), so it is first brought
   // back to equilibrium under the confining stress before the platens move.
@@ -174,6 +174,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   p.diameter = sp.diameter;
   p.density = sp.density;
   p.output_strain_interval = s.output_strain_interval;
+  p.vtk_strain_interval = s.vtk ? s.vtk_strain_interval : 0.0;
   const double dt = settings.time_step;
   p.total_steps = static_cast<long>(std::ceil(s.max_axial_strain * height0 / (2.0 * p.platen_speed) / dt));
   if (!options.quiet)

@@ -91,6 +91,7 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   if (!(s.checkpoint_interval > 0)) t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
   s.vtk = t.boolean_or("vtk", false);
   s.vtk_strain_interval = t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
+  if (!(s.vtk_strain_interval > 0)) t.fail("vtk_strain_interval", "expected an axial-strain interval > 0");
   t.finish();
   return c;
 }

@@ -54,6 +54,22 @@ void record(ShearRun& run) {
   p.last_strain = axial_strain;
 }
 
+// A ParaView snapshot: particles with velocity, displacement since the start, rotation and
+// contact count; the walls; the .pvd index.
+void snapshot(ShearRun& run, const std::string& dir) {
+  const Simulation& sim = run.sim;
+  std::filesystem::create_directories(dir + "/vtk");
+  const std::string name = fmt::format("vtk/particles_{:08d}.vtu", run.progress.step);
+  const std::vector<int> contacts = contacts_per_particle(sim);
+  write_file_atomically(dir + "/" + name, particles_vtu(sim.particles(), &contacts));
+  const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", run.progress.step);
+  write_file_atomically(dir + "/" + walls, walls_vtu(sim.walls(), 2.0 * run.progress.size0.z));
+  run.vtk_index += fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", sim.time(), name);
+  run.vtk_index += fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"1\" file=\"{}\"/>\n", sim.time(), walls);
+  write_file_atomically(dir + "/particles.pvd", "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
+                                                     run.vtk_index + "  </Collection>\n</VTKFile>\n");
+}
+
 void write_curve(const ShearRun& run, const std::string& dir) {
   write_file_atomically(dir + "/curve.csv.partial", std::string(curve_header) + "\n" + run.curve_rows);
 }
@@ -90,6 +106,11 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
                       fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa", 100 * axial_strain,
                                   1e-3 * p.last_axial));
     }
+    if (p.vtk_strain_interval > 0 &&
+        (axial_strain >= p.next_vtk * p.vtk_strain_interval - 1e-12 || p.step == p.total_steps)) {
+      ++p.next_vtk;
+      snapshot(run, dir);
+    }
     if (p.step == p.total_steps) break;
     if (interrupt_requested()) {
       checkpoint();
@@ -123,6 +144,7 @@ void save_checkpoint(const ShearRun& run, const std::string& path) {
   out.value(run.progress);
   out.text(run.curve_rows);
   out.text(run.run_info);
+  out.text(run.vtk_index);
   run.sim.save_state(out);
   write_file_atomically(path, out.bytes());
 }
@@ -154,10 +176,10 @@ ShearRun load_checkpoint(const std::string& path, PairTable table) {
     if (in.value<uint64_t>() != checkpoint_magic) throw std::runtime_error("not a grainlab triaxial checkpoint");
     std::string config_path = in.text(), config_text = in.text();
     const ShearProgress progress = in.value<ShearProgress>();
-    std::string rows = in.text(), info = in.text();
+    std::string rows = in.text(), info = in.text(), vtk = in.text();
     Simulation sim(in, std::move(table));
     if (!in.at_end()) throw std::runtime_error("trailing data");
-    return ShearRun{std::move(sim), progress, std::move(rows), std::move(info), std::move(config_path),
+    return ShearRun{std::move(sim), progress, std::move(rows), std::move(info), std::move(vtk), std::move(config_path),
                     std::move(config_text)};
   } catch (const std::runtime_error& e) {
     throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));

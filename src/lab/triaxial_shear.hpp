@@ -20,6 +20,8 @@ struct ShearProgress {  // plain values, saved as they are
   double peak_axial = 0, peak_strain = 0, peak_deviator = 0, peak_ratio = 0, max_inertial = 0;
   double lateral_error2 = 0, worst_agreement = 0, last_axial = 0, last_strain = 0;
   double wall_time_before = 0;  // s spent in earlier sessions of this run
+  double vtk_strain_interval = 0;  // 0: no snapshots
+  long next_vtk = 0;
   std::array<double, 4> servo_integral{};
 };
 
@@ -28,6 +30,7 @@ struct ShearRun {
   ShearProgress progress;
   std::string curve_rows;     // curve.csv rows written so far (without header)
   std::string run_info;       // JSON text of what the summary needs from before the shearing
+  std::string vtk_index;      // <DataSet> lines of particles.pvd so far
   std::string config_path, config_text;
 };
 

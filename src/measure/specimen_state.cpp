@@ -46,6 +46,19 @@ double coordination_number(const Simulation& sim) {
   return sim.particles().size() ? (2.0 * pp + pw) / sim.particles().size() : 0.0;
 }
 
+std::vector<int> contacts_per_particle(const Simulation& sim) {
+  const ParticleStore& p = sim.particles();
+  const PairContacts& c = sim.pair_contacts();
+  const WallContacts& wc = sim.wall_contacts();
+  std::vector<int> count(p.size(), 0);
+  for (size_t i = 0; i < p.size(); ++i) {
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e)
+      if (c.normal_force[e] > 0.0) ++count[i], ++count[c.partner[e]];
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) count[i] += wc.normal_force[e] > 0.0;
+  }
+  return count;
+}
+
 double unbalanced_force_ratio(const Simulation& sim) {
   const ParticleStore& p = sim.particles();
   double net = 0.0;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/simulation.hpp"
 
@@ -24,6 +25,9 @@ double solid_fraction(const ParticleStore& particles, double volume);
 
 // Mean number of touching contacts per particle, Z = (2 N_pp + N_pw) / N.
 double coordination_number(const Simulation& sim);
+
+// Touching contacts of each particle (by storage index), walls included.
+std::vector<int> contacts_per_particle(const Simulation& sim);
 
 // Mean |net force| on the free particles divided by the mean contact force magnitude.
 double unbalanced_force_ratio(const Simulation& sim);

@@ -135,6 +135,30 @@ def triaxial_periodic_checkpoint_survives_kill():
         compare_runs(a, b)
 
 
+def triaxial_vtk_snapshots():
+    import re
+    import vtk  # Debian python3-vtk9
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d, "vtk = true\nvtk_strain_interval = 0.02")
+        out = os.path.join(d, "o")
+        r = run("run", path, "--out", out, "--quiet")
+        assert r.returncode == 0, r.stderr
+        files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "particles.pvd")).read())
+        assert len(files) == 2 * 3, files  # particles + walls at 0, 2 and 4 % axial strain
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, files[-2]))
+        reader.Update()
+        grid = reader.GetOutput()
+        assert grid.GetNumberOfPoints() == 250
+        for name in ("velocity", "displacement", "rotation", "contacts"):
+            assert grid.GetPointData().GetArray(name) is not None, name
+        contacts = grid.GetPointData().GetArray("contacts").GetRange()
+        assert contacts[1] >= 4, contacts
+        reader.SetFileName(os.path.join(out, files[-1]))
+        reader.Update()
+        assert reader.GetOutput().GetNumberOfCells() == 6  # the six walls
+
+
 def resume_without_checkpoint():
     with tempfile.TemporaryDirectory() as d:
         r = run("run", "--resume", d)
