@@ -2,6 +2,8 @@
 // force plus an external load (the slider of the sliding-friction test).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "support/scenes.hpp"
 
 using namespace grainlab;
@@ -44,4 +46,18 @@ TEST(WallMotion, ImpactOnFreeWallConservesMomentum) {
   EXPECT_NEAR(momentum, -m * v0, 1e-9 * m * v0);
   // elastic two-body collision: v_wall = 2 m v0 / (m + M) downwards
   EXPECT_NEAR(sim.walls()[0].velocity.z, -2 * m * v0 / (m + w.mass), 2e-3 * v0);
+}
+
+TEST(BlowUp, NanVelocityStopsTheRunWithAdvice) {
+  ParticleStore p;
+  p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
+  Simulation sim(std::move(p), {plane_wall({}, {0, 0, 1})}, two_material_table(0.9, 0.1), settings_for(1e-3, 0.9, 0.1));
+  sim.particles().velocity[0].x = std::nan("");
+  try {
+    sim.step();
+    FAIL() << "a NaN velocity must stop the run";
+  } catch (const BlowUpError& e) {
+    EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("dt_fraction"), std::string::npos) << e.what();
+  }
 }

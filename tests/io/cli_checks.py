@@ -234,6 +234,31 @@ def existing_output_not_overwritten():
         assert open(os.path.join(out, "precious.txt")).read() == "keep me", "foreign files survive"
 
 
+def expect_blow_up(config_text, *fragments):
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        with open(path, "w") as f:
+            f.write(config_text)
+        r = run(["run", path, "--out", os.path.join(d, "out"), "--quiet"], d)
+        assert r.returncode == 1, (r.returncode, r.stderr)
+        for frag in ("blew up",) + fragments:
+            assert frag in r.stderr, (frag, r.stderr)
+        print("stopped as expected:", r.stderr.strip())
+
+
+@check
+def blow_up_on_speed():
+    expect_blow_up(replace("velocity = [0.0, 0.0, -0.5]", "velocity = [0.0, 0.0, -150.0]"), "150 m/s",
+                   "simulation.max_speed", "dt_fraction")
+
+
+@check
+def blow_up_on_overlap():
+    # rubber-soft beads hitting the plate at 0.5 m/s sink deeper than 5 % of a radius
+    expect_blow_up(replace("youngs_modulus = 46.2e9", "youngs_modulus = 1e5").replace("duration = 2e-5", "duration = 5e-3"),
+                   "overlap", "5.00 %", "dt_fraction")
+
+
 def run_base(d, threads, text=BASE):
     path = os.path.join(d, "scene.toml")
     with open(path, "w") as f:
