@@ -13,6 +13,7 @@
 #include "io/output_files.hpp"
 #include "io/scene_builder.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/lab_config.hpp"
 
 namespace grainlab {
 
@@ -107,13 +108,8 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
 }
 
 void run_flat_throw(const std::string& path, const toml::table& root, const RunOptions& options) {
-  check_top_level_keys(root, path, true);
-  SceneConfig c;
-  c.file = path;
-  read_materials(root, c);
-  read_pairs(root, c);
-  TableReader t(*root.get("test")->as_table(), path, "test");
-  t.string("type");
+  const SceneConfig c = read_lab_materials(path, root);
+  TableReader t = test_table_reader(path, root);
   FlatThrowSettings s;
   s.bead_material = t.string_or("bead_material", "glass");
   s.target_material = t.string("target_material");

@@ -11,6 +11,7 @@
 #include "io/progress.hpp"
 #include "io/scene_builder.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/lab_config.hpp"
 #include "lab/sliding_friction.hpp"
 
 namespace grainlab {
@@ -52,13 +53,8 @@ nlohmann::json result_json(const SlidingFrictionResult& r) {
 }  // namespace
 
 void run_sliding_friction(const std::string& path, const toml::table& root, const RunOptions& options) {
-  check_top_level_keys(root, path, true);
-  SceneConfig c;
-  c.file = path;
-  read_materials(root, c);
-  read_pairs(root, c);
-  TableReader t(*root.get("test")->as_table(), path, "test");
-  t.string("type");
+  const SceneConfig c = read_lab_materials(path, root);
+  TableReader t = test_table_reader(path, root);
   SlidingFrictionSettings s;
   s.bead_material = t.string_or("bead_material", "glass");
   s.slider_material = t.string("slider_material");

@@ -5,19 +5,14 @@
 #include "io/config_error.hpp"
 #include "io/scene_builder.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/lab_config.hpp"
 
 namespace grainlab {
 
 TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& root) {
-  check_top_level_keys(root, path, true);
   TriaxialConfig c;
-  c.scene.file = path;
-  read_materials(root, c.scene);
-  read_pairs(root, c.scene);
-  const toml::node* test = root.get("test");
-  if (!test || !test->is_table()) throw ConfigError(fmt::format("{}: [test] table missing", path));
-  TableReader t(*test->as_table(), path, "test");
-  t.string("type");
+  c.scene = read_lab_materials(path, root);
+  TableReader t = test_table_reader(path, root);
   TriaxialSettings& s = c.settings;
   SpecimenSettings& p = s.specimen;
   c.table = build_pair_table(c.scene);

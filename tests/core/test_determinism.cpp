@@ -13,23 +13,29 @@ using namespace grainlab;
 using namespace grainlab::test;
 
 namespace {
-ParticleStore run_pile(int threads) {
-  // 1000 beads with random velocities in a closed box, gravity, friction and rolling resistance.
-  omp_set_num_threads(threads);
+// Beads with random velocities in a 20 x 20 x 30 mm box of plane walls (open at the top unless
+// `closed`), gravity, friction and rolling resistance.
+Simulation random_box(long count, uint64_t seed, bool closed) {
   std::vector<Sphere> spheres;
-  std::mt19937_64 rng(11);
+  std::mt19937_64 rng(seed);
   InsertionRegion box;
   box.box_min = {0, 0, 0};
   box.box_max = {0.02, 0.02, 0.03};
-  insert_random_spheres(spheres, box, 1000, 1.8e-3, 2.2e-3, rng);  // above parallel_threshold
+  insert_random_spheres(spheres, box, count, 1.8e-3, 2.2e-3, rng);
   ParticleStore p;
   for (size_t i = 0; i < spheres.size(); ++i)
     p.add(static_cast<uint32_t>(i), 0, spheres[i].radius, glass_density, spheres[i].centre,
           {uniform01(rng) - 0.5, uniform01(rng) - 0.5, uniform01(rng) - 0.5}, {}, false);
   std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}), plane_wall({0, 0, 0}, {1, 0, 0}),
                           plane_wall({0.02, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
-                          plane_wall({0, 0.02, 0}, {0, -1, 0}), plane_wall({0, 0, 0.03}, {0, 0, -1})};
-  Simulation sim(std::move(p), walls, two_material_table(0.5, 0.3, 0.05), settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
+                          plane_wall({0, 0.02, 0}, {0, -1, 0})};
+  if (closed) walls.push_back(plane_wall({0, 0, 0.03}, {0, 0, -1}));
+  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3, 0.05), settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
+}
+
+ParticleStore run_pile(int threads) {
+  omp_set_num_threads(threads);
+  Simulation sim = random_box(1000, 11, true);  // above parallel_threshold
   long contacts = 0;
   for (int s = 0; s < 20000; ++s) {
     sim.step();
@@ -54,21 +60,8 @@ TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalStates) {
 
 TEST(Determinism, RestoredStateContinuesBitIdentically) {
   // A checkpoint taken mid-run and restored must continue exactly as the uninterrupted run.
-  std::vector<Sphere> spheres;
-  std::mt19937_64 rng(5);
-  InsertionRegion box;
-  box.box_min = {0, 0, 0};
-  box.box_max = {0.02, 0.02, 0.03};
-  insert_random_spheres(spheres, box, 700, 1.8e-3, 2.2e-3, rng);
-  ParticleStore p;
-  for (size_t i = 0; i < spheres.size(); ++i)
-    p.add(static_cast<uint32_t>(i), 0, spheres[i].radius, glass_density, spheres[i].centre,
-          {uniform01(rng) - 0.5, uniform01(rng) - 0.5, uniform01(rng) - 0.5}, {}, false);
-  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}), plane_wall({0, 0, 0}, {1, 0, 0}),
-                          plane_wall({0.02, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
-                          plane_wall({0, 0.02, 0}, {0, -1, 0})};
-  const PairTable table = two_material_table(0.5, 0.3, 0.05);
-  Simulation a(std::move(p), walls, table, settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
+  Simulation a = random_box(700, 5, false);
+  const PairTable table = a.pair_table();
   a.advance(3000);
   StateWriter saved;
   a.save_state(saved);

@@ -1,0 +1,19 @@
+// What every virtual test's config shares: the top-level keys (a [test] table allowed), the
+// materials and the pairs, and a strict reader of the [test] table with its `type` consumed.
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <string>
+
+#include "io/scene_config.hpp"
+#include "io/toml_reader.hpp"
+
+namespace grainlab {
+
+SceneConfig read_lab_materials(const std::string& path, const toml::table& root);
+
+// The [test] table (ConfigError if missing), with `type` already read.
+TableReader test_table_reader(const std::string& path, const toml::table& root);
+
+}  // namespace grainlab
