@@ -19,39 +19,67 @@ namespace {
 
 constexpr uint64_t checkpoint_magic = 0x67726e6c74726931;  // "grnltri1"
 
-// One row of curve.csv, and the running peaks and errors.
+// Adds this step's stresses to the running sums of the output interval.
+void accumulate(ShearRun& run) {
+  Simulation& sim = run.sim;
+  ShearProgress& p = run.progress;
+  for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] += wall_stress(sim.walls(), k);
+  ++p.wall_samples;
+  if (p.step % stress_sample_steps == 0) {
+    const Tensor3 sigma = love_weber_stress(sim, box_volume(sim.walls()));
+    for (int a = 0; a < 3; ++a) p.particle_stress_sum[a] += sigma[a][a];
+    ++p.particle_samples;
+  }
+}
+
+// One row of curve.csv (stresses averaged over the interval since the last row; at the start
+// the instantaneous state), and the running peaks and errors.
 void record(ShearRun& run) {
   Simulation& sim = run.sim;
   ShearProgress& p = run.progress;
   const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
   const double axial_strain = (p.size0.z - size.z) / p.size0.z;
   const double volume = size.x * size.y * size.z, volume0 = p.size0.x * p.size0.y * p.size0.z;
-  const Tensor3 sigma = love_weber_stress(sim, volume);
-  const double sa = 0.5 * (wall_stress(sim.walls(), bottom) + wall_stress(sim.walls(), top));
-  const double sx = 0.5 * (wall_stress(sim.walls(), x_low) + wall_stress(sim.walls(), x_high));
-  const double sy = 0.5 * (wall_stress(sim.walls(), y_low) + wall_stress(sim.walls(), y_high));
+  if (p.wall_samples == 0) {  // first row: the state itself
+    for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] = wall_stress(sim.walls(), k);
+    p.wall_samples = 1;
+    const Tensor3 sigma = love_weber_stress(sim, volume);
+    for (int a = 0; a < 3; ++a) p.particle_stress_sum[a] = sigma[a][a];
+    p.particle_samples = 1;
+  }
+  std::array<double, 6> w;
+  for (int k = 0; k < 6; ++k) w[k] = p.wall_stress_sum[k] / p.wall_samples;
+  std::array<double, 3> particle;
+  for (int a = 0; a < 3; ++a) particle[a] = p.particle_stress_sum[a] / std::max(1L, p.particle_samples);
+  const double sa = 0.5 * (w[bottom] + w[top]);
+  const double sx = 0.5 * (w[x_low] + w[x_high]);
+  const double sy = 0.5 * (w[y_low] + w[y_high]);
   const double deviator = sa - 0.5 * (sx + sy), mean = (sa + sx + sy) / 3.0;
   const double inertial = inertial_number(p.strain_rate, p.diameter, p.density, mean);
   run.curve_rows += fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()), exact(axial_strain),
       exact((p.size0.x - size.x) / p.size0.x), exact((p.size0.y - size.y) / p.size0.y), exact(1.0 - volume / volume0),
-      exact(sa), exact(sx), exact(sy), exact(sigma[2][2]), exact(sigma[0][0]), exact(sigma[1][1]), exact(deviator),
+      exact(sa), exact(sx), exact(sy), exact(particle[2]), exact(particle[0]), exact(particle[1]), exact(deviator),
       exact(mean), exact(deviator / mean), exact(solid_fraction(sim.particles(), volume)),
       exact(coordination_number(sim)), exact(inertial), exact(unbalanced_force_ratio(sim)));
   if (p.step > 0) {
     p.max_inertial = std::max(p.max_inertial, inertial);
     for (int k = 0; k < 4; ++k) {
-      const double e = wall_stress(sim.walls(), k) / p.confining_stress - 1.0;
+      const double e = w[k] / p.confining_stress - 1.0;
       p.lateral_error2 += e * e;
       ++p.lateral_samples;
     }
-    if (axial_strain > 0.005) p.worst_agreement = std::max(p.worst_agreement, std::abs(sigma[2][2] - sa) / sa);
+    if (axial_strain > 0.005) p.worst_agreement = std::max(p.worst_agreement, std::abs(particle[2] - sa) / sa);
   }
   if (sa > p.peak_axial) p.peak_axial = sa, p.peak_strain = axial_strain;
   p.peak_deviator = std::max(p.peak_deviator, deviator);
   p.peak_ratio = std::max(p.peak_ratio, deviator / mean);
   p.last_axial = sa;
   p.last_strain = axial_strain;
+  p.wall_stress_sum = {};
+  p.wall_samples = 0;
+  p.particle_stress_sum = {};
+  p.particle_samples = 0;
 }
 
 // A ParaView snapshot: particles with velocity, displacement since the start, rotation and
@@ -128,6 +156,7 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
     set_inward_speed(sim.walls(), bottom, p.platen_speed);
     set_inward_speed(sim.walls(), top, p.platen_speed);
     sim.step();
+    accumulate(run);
   }
   p.wall_time_before += std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
   write_curve(run, dir);

@@ -23,7 +23,15 @@ struct ShearProgress {  // plain values, saved as they are
   double vtk_strain_interval = 0;  // 0: no snapshots
   long next_vtk = 0;
   std::array<double, 4> servo_integral{};
+  // Averages over the current output interval (a laboratory load cell integrates too): the six
+  // wall stresses every step, the Love-Weber diagonal every `stress_sample_steps` steps.
+  std::array<double, 6> wall_stress_sum{};
+  long wall_samples = 0;
+  std::array<double, 3> particle_stress_sum{};
+  long particle_samples = 0;
 };
+
+inline constexpr long stress_sample_steps = 50;
 
 struct ShearRun {
   Simulation sim;
