@@ -24,16 +24,17 @@ ContactKinematics glass_contact(double tangential_speed) {
 
 template <bool Rolling>
 void run(benchmark::State& state, double tangential_speed) {
-  const PairTable table = bench::reference_table(bench::glass_E, bench::glass_restitution,
-                                                 bench::glass_friction);
+  const PairTable table =
+      bench::reference_table(bench::glass_E, bench::glass_restitution, bench::glass_friction);
   const ContactKinematics k = glass_contact(tangential_speed);
   Vec3 spring{1e-9, 0.0, 0.0}, rolling{};
   double twist = 0.0;
   Vec3 rf{};
   for (auto _ : state) {
     ContactHistoryRef h{&spring, &rolling, &twist, &rf};
-    const ContactResponse r =
-        contact_response<Rolling, false, false>(table(0, 0), normal_params(table(0, 0), k.effective_radius, k.effective_mass), k, 1e-3, 1e-3, 1e-13, 1e-5, 8e-8, h);
+    const ContactResponse r = contact_response<Rolling, false, false>(
+        table(0, 0), normal_params(table(0, 0), k.effective_radius, k.effective_mass), k, 1e-3,
+        1e-3, 1e-13, 1e-5, 8e-8, h);
     benchmark::DoNotOptimize(r);
     benchmark::ClobberMemory();
     if (Rolling) rolling = {};
@@ -42,9 +43,15 @@ void run(benchmark::State& state, double tangential_speed) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void BM_ContactSticking(benchmark::State& s) { run<false>(s, 1e-6); }
-void BM_ContactSliding(benchmark::State& s) { run<false>(s, 1.0); }
-void BM_ContactStickingWithRolling(benchmark::State& s) { run<true>(s, 1e-6); }
+void BM_ContactSticking(benchmark::State& s) {
+  run<false>(s, 1e-6);
+}
+void BM_ContactSliding(benchmark::State& s) {
+  run<false>(s, 1.0);
+}
+void BM_ContactStickingWithRolling(benchmark::State& s) {
+  run<true>(s, 1e-6);
+}
 
 }  // namespace
 

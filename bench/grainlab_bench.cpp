@@ -7,6 +7,7 @@
 //   grainlab_bench dense-11k --tile 4x4x4           (64 copies side by side: 745k beads)
 //   grainlab_bench dense-11k --write-lammps-data out.data   (same packing for the peer codes)
 //   grainlab_bench settle-1M --allow-1m
+#include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -16,7 +17,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "bench/scenes.hpp"
 #include "grainlab/version.hpp"
@@ -68,9 +68,11 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
   Packing start;
   const bool have_start = !start_from.empty() && read_packing_csv(start_from, start);
   if (workload == "dense-11k") {
-    p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true, have_start ? &start : nullptr);
+    p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true,
+                           have_start ? &start : nullptr);
   } else if (workload == "dense-88k") {
-    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true, have_start ? &start : nullptr);
+    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true,
+                           have_start ? &start : nullptr);
   } else if (workload == "settle-1M") {
     if (!allow_1m) throw CLI::ValidationError("settle-1M", "a million beads: pass --allow-1m");
     // Solid fraction 0.25 in a 0.25 x 0.25 x 0.27 m box; gravity does the rest.
@@ -103,10 +105,12 @@ int main(int argc, char** argv) {
   app.add_option("--warmup", warmup, "untimed steps before each run");
   app.add_option("--cache-dir", cache_dir, "where packings are cached");
   app.add_option("--results-dir", results_dir, "where <hostname>.csv gets a row per run");
-  app.add_option("--write-lammps-data", lammps_data, "write the packing as a LAMMPS data file and exit");
+  app.add_option("--write-lammps-data", lammps_data,
+                 "write the packing as a LAMMPS data file and exit");
   app.add_option("--tile", tile, "run NXxNYxNZ copies of the packing side by side");
   app.add_option("--label", label, "free text stored in the CSV row (e.g. the commit)");
-  app.add_option("--start-from", start_from, "build the packing on from this packing CSV (a partly compressed one)");
+  app.add_option("--start-from", start_from,
+                 "build the packing on from this packing CSV (a partly compressed one)");
   app.add_flag("--allow-1m", allow_1m, "allow building the settle-1M workload");
   app.add_flag("--no-csv", no_csv, "do not append to the results CSV");
   CLI11_PARSE(app, argc, argv);
@@ -136,15 +140,19 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(results_dir);
     if (!std::filesystem::exists(csv)) {
       std::FILE* f = std::fopen(csv.c_str(), "w");
-      std::fprintf(f, "date_utc,version,label,workload,particles,threads,steps,seconds,particle_steps_per_s,"
-                      "ns_per_particle_step,rebuilds,contacts_per_particle,peak_rss_mb,bytes_per_particle,state_hash,list_entries_per_particle\n");
+      std::fprintf(
+          f,
+          "date_utc,version,label,workload,particles,threads,steps,seconds,particle_steps_per_s,"
+          "ns_per_particle_step,rebuilds,contacts_per_particle,peak_rss_mb,bytes_per_particle,"
+          "state_hash,list_entries_per_particle\n");
       std::fclose(f);
     }
   }
   fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}\n", name, n, steps, warmup,
              grainlab::version_string);
   fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8}\n", "threads", "rep",
-             "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash", "entries");
+             "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash",
+             "entries");
   for (int t : threads) {
     omp_set_num_threads(t);
     for (int r = 0; r < reps; ++r) {
@@ -153,7 +161,8 @@ int main(int argc, char** argv) {
       const long rebuilds0 = sim.rebuild_count();
       const auto start = std::chrono::steady_clock::now();
       sim.advance(steps);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const double rate = static_cast<double>(n) * steps / seconds;
       const long rebuilds = sim.rebuild_count() - rebuilds0;
       // Z: mean number of touching particle-particle contacts per particle (2 C / N).
@@ -162,17 +171,18 @@ int main(int argc, char** argv) {
       const uint64_t hash = state_hash(sim.particles());
       // entries: half-list entries (pairs within the skin) per particle
       const double entries = static_cast<double>(sim.pair_contacts().size()) / n;
-      fmt::print("{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f}\n", t, r,
-                 rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries);
+      fmt::print(
+          "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f}\n",
+          t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries);
       std::fflush(stdout);
       if (!no_csv) {
         std::FILE* f = std::fopen(csv.c_str(), "a");
         const std::time_t now = std::time(nullptr);
         char date[32];
         std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-        std::fprintf(f, "%s,%s,%s,%s,%ld,%d,%ld,%.4f,%.6g,%.2f,%ld,%.4f,%.1f,%.0f,%016llx,%.3f\n", date,
-                     grainlab::version_string, label.c_str(), name.c_str(), n, t, steps, seconds, rate,
-                     1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n,
+        std::fprintf(f, "%s,%s,%s,%s,%ld,%d,%ld,%.4f,%.6g,%.2f,%ld,%.4f,%.1f,%.0f,%016llx,%.3f\n",
+                     date, grainlab::version_string, label.c_str(), name.c_str(), n, t, steps,
+                     seconds, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n,
                      static_cast<unsigned long long>(hash), entries);
         std::fclose(f);
       }

@@ -1,5 +1,7 @@
 #include "bench/scenes.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,8 +11,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fmt/format.h>
-
 #include "contact/damping.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
@@ -18,7 +18,8 @@
 namespace grainlab::bench {
 
 PairTable reference_table(double youngs_modulus, double restitution, double friction) {
-  PairTable t({Material{"glass", youngs_modulus, 0.245, glass_density}, Material{"wall", {}, {}, {}}});
+  PairTable t(
+      {Material{"glass", youngs_modulus, 0.245, glass_density}, Material{"wall", {}, {}, {}}});
   PairProperties p;
   p.restitution = restitution;
   p.friction = friction;
@@ -30,7 +31,8 @@ PairTable reference_table(double youngs_modulus, double restitution, double fric
 
 SimulationSettings reference_settings(double min_radius, Vec3 gravity) {
   SimulationSettings s;
-  s.time_step = dt_fraction * collision_duration(min_radius, glass_density, glass_E, glass_restitution);
+  s.time_step =
+      dt_fraction * collision_duration(min_radius, glass_density, glass_E, glass_restitution);
   s.dt_fraction = dt_fraction;
   s.gravity = gravity;
   s.skin = 0.2 * min_radius;
@@ -59,7 +61,9 @@ std::vector<Wall> box_walls(const Vec3& lo, const Vec3& hi) {
 
 namespace {
 
-double min_radius_of(const std::vector<double>& r) { return *std::min_element(r.begin(), r.end()); }
+double min_radius_of(const std::vector<double>& r) {
+  return *std::min_element(r.begin(), r.end());
+}
 
 ParticleStore store_of(const Packing& p, double density) {
   ParticleStore s;
@@ -112,7 +116,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
   const double soft_E = glass_E / softening;
   const double target_stress = confining_stress / softening;
   const double bead_volume = std::numbers::pi / 6.0 * bead_diameter * bead_diameter * bead_diameter;
-  const double target_fraction = count * bead_volume / (target_size.x * target_size.y * target_size.z);
+  const double target_fraction =
+      count * bead_volume / (target_size.x * target_size.y * target_size.z);
   // Random sequential insertion is comfortable up to a solid fraction of ~0.3.
   const double grow = std::cbrt(std::max(1.0, target_fraction / 0.30));
   const Vec3 centre = 0.5 * target_size;
@@ -132,8 +137,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
   SimulationSettings settings;
   settings.time_step = dt_fraction * collision_duration(r_min, glass_density, soft_E, 0.3);
   settings.skin = 0.2 * r_min;
-  Simulation sim(store_of(loose, glass_density), box_walls(lo, hi), reference_table(soft_E, 0.3, glass_friction),
-                 settings);
+  Simulation sim(store_of(loose, glass_density), box_walls(lo, hi),
+                 reference_table(soft_E, 0.3, glass_friction), settings);
 
   // Servo by affine compression: every chunk of steps, bead centres and wall planes are scaled
   // together towards the box centre by a strain that falls to zero as the mean wall stress
@@ -148,7 +153,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
     double sum = 0.0;
     for (int d = 0; d < 3; ++d) {
       const int a = (d + 1) % 3, b = (d + 2) % 3;
-      const double area = (w[2 * a + 1].point[a] - w[2 * a].point[a]) * (w[2 * b + 1].point[b] - w[2 * b].point[b]);
+      const double area =
+          (w[2 * a + 1].point[a] - w[2 * a].point[a]) * (w[2 * b + 1].point[b] - w[2 * b].point[b]);
       for (int side = 0; side < 2; ++side) sum += std::abs(w[2 * d + side].force[d]) / area;
     }
     return sum / 6.0;
@@ -166,7 +172,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
     // bed that is not yet jammed shows stress only while it is being squeezed).
     if (step % 2000 == 0) {
       const double fraction = count * bead_volume / volume;
-      const bool settled = std::abs(fraction - last_fraction) < 2e-4 && std::abs(stress / target_stress - 1.0) < 0.1;
+      const bool settled =
+          std::abs(fraction - last_fraction) < 2e-4 && std::abs(stress / target_stress - 1.0) < 0.1;
       last_fraction = fraction;
       if (steps_at_target >= 0 && settled) {
         // A bed that is not jammed loses its stress at rest: then compress on. After three
@@ -175,7 +182,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
         const ParticleStore servo_state = sim.particles();
         sim.advance(2000);
         if (mean_stress() > 0.3 * target_stress) break;
-        if (verbose) fmt::print(stderr, "  not jammed yet (stress at rest {:.1f} Pa)\n", mean_stress());
+        if (verbose)
+          fmt::print(stderr, "  not jammed yet (stress at rest {:.1f} Pa)\n", mean_stress());
         if (++tries == 3) {
           sim.particles() = servo_state;
           keep_servo_state = true;
@@ -184,7 +192,8 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
         steps_at_target = -1;
       }
     }
-    const double strain = max_strain_per_chunk * std::clamp(1.0 - stress / target_stress, -0.3, 1.0);
+    const double strain =
+        max_strain_per_chunk * std::clamp(1.0 - stress / target_stress, -0.3, 1.0);
     const double scale = 1.0 - strain;
     ParticleStore& beads = sim.particles();
     for (size_t k = 0; k < beads.size(); ++k) {
@@ -194,7 +203,9 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
     }
     for (Wall& wall : w) wall.point = centre + scale * (wall.point - centre);
     if (verbose && step % 5000 == 0)
-      fmt::print(stderr, "  compaction step {:6d}: mean wall stress {:8.1f} Pa (target {:.1f}), solid fraction {:.3f}\n",
+      fmt::print(stderr,
+                 "  compaction step {:6d}: mean wall stress {:8.1f} Pa (target {:.1f}), solid "
+                 "fraction {:.3f}\n",
                  step, stress, target_stress, count * bead_volume / volume);
     sim.advance(chunk);
   }
@@ -211,7 +222,9 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
   p.box_lo = {w[0].point.x, w[2].point.y, w[4].point.z};
   p.box_hi = {w[1].point.x, w[3].point.y, w[5].point.z};
   if (verbose)
-    fmt::print(stderr, "  packing: {} steps, box {:.2f} x {:.2f} x {:.2f} mm, wall stress {:.1f} Pa (x{} with real E)\n",
+    fmt::print(stderr,
+               "  packing: {} steps, box {:.2f} x {:.2f} x {:.2f} mm, wall stress {:.1f} Pa (x{} "
+               "with real E)\n",
                sim.step_count(), 1e3 * (p.box_hi.x - p.box_lo.x), 1e3 * (p.box_hi.y - p.box_lo.y),
                1e3 * (p.box_hi.z - p.box_lo.z), mean_stress(), softening);
   return p;
@@ -287,12 +300,13 @@ void write_lammps_data(const Packing& p, const std::string& path) {
   const double margin = 2.0 * bead_diameter;
   std::fprintf(f, "grainlab benchmark packing (%zu beads)\n\n%zu atoms\n1 atom types\n\n",
                p.radius.size(), p.radius.size());
-  std::fprintf(f, "%.17g %.17g xlo xhi\n%.17g %.17g ylo yhi\n%.17g %.17g zlo zhi\n\nAtoms # sphere\n\n",
-               p.box_lo.x - margin, p.box_hi.x + margin, p.box_lo.y - margin, p.box_hi.y + margin,
-               p.box_lo.z - margin, p.box_hi.z + margin);
+  std::fprintf(
+      f, "%.17g %.17g xlo xhi\n%.17g %.17g ylo yhi\n%.17g %.17g zlo zhi\n\nAtoms # sphere\n\n",
+      p.box_lo.x - margin, p.box_hi.x + margin, p.box_lo.y - margin, p.box_hi.y + margin,
+      p.box_lo.z - margin, p.box_hi.z + margin);
   for (size_t i = 0; i < p.radius.size(); ++i)
-    std::fprintf(f, "%zu 1 %.17g %.17g %.17g %.17g %.17g\n", i + 1, 2.0 * p.radius[i], glass_density,
-                 p.position[i].x, p.position[i].y, p.position[i].z);
+    std::fprintf(f, "%zu 1 %.17g %.17g %.17g %.17g %.17g\n", i + 1, 2.0 * p.radius[i],
+                 glass_density, p.position[i].x, p.position[i].y, p.position[i].z);
   std::fclose(f);
 
   // The contact constants in the peer codes' form (LAMMPS gran/hooke/history: constant kn, kt in
@@ -309,14 +323,18 @@ void write_lammps_data(const Packing& p, const std::string& path) {
   const SimulationSettings s = reference_settings(min_radius_of(p.radius));
   std::FILE* g = std::fopen((path + ".params").c_str(), "w");
   if (!g) throw std::runtime_error("cannot write " + path + ".params");
-  std::fprintf(g, "# grainlab reference contact constants for %s (written by grainlab_bench)\n", path.c_str());
-  std::fprintf(g, "variable kn equal %.17g\nvariable kt equal %.17g\nvariable gamma_n equal %.17g\n", kn,
-               glass_rns * kn, gamma_n);
-  std::fprintf(g, "variable kn_wall equal %.17g\nvariable kt_wall equal %.17g\n", 2.0 * kn, 2.0 * glass_rns * kn);
+  std::fprintf(g, "# grainlab reference contact constants for %s (written by grainlab_bench)\n",
+               path.c_str());
+  std::fprintf(g,
+               "variable kn equal %.17g\nvariable kt equal %.17g\nvariable gamma_n equal %.17g\n",
+               kn, glass_rns * kn, gamma_n);
+  std::fprintf(g, "variable kn_wall equal %.17g\nvariable kt_wall equal %.17g\n", 2.0 * kn,
+               2.0 * glass_rns * kn);
   std::fprintf(g, "variable mu equal %.17g\nvariable dt equal %.17g\nvariable skin equal %.17g\n",
                glass_friction, s.time_step, s.skin);
-  std::fprintf(g, "variable xlo equal %.17g\nvariable xhi equal %.17g\nvariable ylo equal %.17g\n"
-                  "variable yhi equal %.17g\nvariable zlo equal %.17g\nvariable zhi equal %.17g\n",
+  std::fprintf(g,
+               "variable xlo equal %.17g\nvariable xhi equal %.17g\nvariable ylo equal %.17g\n"
+               "variable yhi equal %.17g\nvariable zlo equal %.17g\nvariable zhi equal %.17g\n",
                p.box_lo.x, p.box_hi.x, p.box_lo.y, p.box_hi.y, p.box_lo.z, p.box_hi.z);
   std::fclose(g);
 }

@@ -21,13 +21,13 @@ namespace grainlab::bench {
 
 // The reference beads and pairs (DESIGN.md sec. 3): glass-glass and glass-wall with the same
 // e and mu so that the peer codes, which have one wall law, see the same model.
-inline constexpr double glass_E = 46.2e9;          // Pa
-inline constexpr double glass_density = 2500.0;    // kg/m^3
+inline constexpr double glass_E = 46.2e9;        // Pa
+inline constexpr double glass_density = 2500.0;  // kg/m^3
 inline constexpr double glass_restitution = 0.926;
 inline constexpr double glass_friction = 0.16;
 inline constexpr double glass_rns = 0.5;
-inline constexpr double bead_diameter = 2.0e-3;    // m (uniform in +-1 %)
-inline constexpr double dt_fraction = 0.1;         // dt = 0.1 t_c (grainlab default)
+inline constexpr double bead_diameter = 2.0e-3;  // m (uniform in +-1 %)
+inline constexpr double dt_fraction = 0.1;       // dt = 0.1 t_c (grainlab default)
 
 struct Packing {
   std::vector<double> radius;

@@ -23,8 +23,10 @@ Command add_params_command(CLI::App& app) {
               const ParticleStore particles = build_particles(c);
               const auto pairs = derive_pairs(c, table, particles);
               const TimeStepChoice dt = choose_time_step(c, pairs);
-              if (*json) fmt::print("{}\n", derived_pairs_json(pairs, dt).dump(2));
-              else fmt::print("{}", derived_pairs_text(pairs, dt));
+              if (*json)
+                fmt::print("{}\n", derived_pairs_json(pairs, dt).dump(2));
+              else
+                fmt::print("{}", derived_pairs_text(pairs, dt));
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());
               return exit_bad_input;

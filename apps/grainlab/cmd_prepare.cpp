@@ -1,7 +1,7 @@
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <memory>
-#include <omp.h>
 
 #include "command.hpp"
 #include "io/config_error.hpp"
@@ -12,11 +12,15 @@ namespace grainlab::app {
 Command add_prepare_command(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto config = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand("prepare", "prepare (compress) the specimen of a triaxial config and save it");
+  CLI::App* sub = app.add_subcommand(
+      "prepare", "prepare (compress) the specimen of a triaxial config and save it");
   sub->add_option("config", *config, "triaxial test configuration (TOML)")->required();
-  sub->add_option("--out", options->out_dir, "output directory (specimen.csv, specimen.json)")->required();
-  sub->add_flag("--overwrite", options->overwrite, "replace results in an existing output directory");
-  sub->add_option("--threads", options->threads, "OpenMP threads (results do not depend on it)")->check(CLI::Range(1, 1024));
+  sub->add_option("--out", options->out_dir, "output directory (specimen.csv, specimen.json)")
+      ->required();
+  sub->add_flag("--overwrite", options->overwrite,
+                "replace results in an existing output directory");
+  sub->add_option("--threads", options->threads, "OpenMP threads (results do not depend on it)")
+      ->check(CLI::Range(1, 1024));
   sub->add_flag("--quiet", options->quiet, "no progress output");
   return {sub, [options, config] {
             try {

@@ -1,7 +1,7 @@
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <memory>
-#include <omp.h>
 
 #include "command.hpp"
 #include "core/simulation.hpp"
@@ -19,19 +19,24 @@ Command add_run_command(CLI::App& app) {
   auto config = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("run", "run a scene or virtual test from a TOML config");
   auto resume = std::make_shared<std::string>();
-  CLI::Option* config_option =
-      sub->add_option("config", *config, "scene or test configuration (TOML; docs/scene-schema.md, docs/lab-tests.md)");
-  CLI::Option* out_option = sub->add_option("--out", options->out_dir, "output directory (created; must be empty)");
-  sub->add_option("--resume", *resume, "continue an interrupted triaxial run from DIR/checkpoint.bin")
+  CLI::Option* config_option = sub->add_option(
+      "config", *config,
+      "scene or test configuration (TOML; docs/scene-schema.md, docs/lab-tests.md)");
+  CLI::Option* out_option =
+      sub->add_option("--out", options->out_dir, "output directory (created; must be empty)");
+  sub->add_option("--resume", *resume,
+                  "continue an interrupted triaxial run from DIR/checkpoint.bin")
       ->excludes(config_option)
       ->excludes(out_option);
-  sub->add_flag("--overwrite", options->overwrite, "replace results in an existing output directory");
+  sub->add_flag("--overwrite", options->overwrite,
+                "replace results in an existing output directory");
   sub->add_option("--threads", options->threads, "OpenMP threads (results do not depend on it)")
       ->check(CLI::Range(1, 1024));
   sub->add_flag("--quiet", options->quiet, "no progress output");
   return {sub, [options, config, resume] {
             if (resume->empty() && (config->empty() || options->out_dir.empty())) {
-              fmt::print(stderr, "grainlab: error: run needs CONFIG and --out DIR (or --resume DIR)\n");
+              fmt::print(stderr,
+                         "grainlab: error: run needs CONFIG and --out DIR (or --resume DIR)\n");
               return exit_bad_input;
             }
             try {
@@ -42,8 +47,10 @@ Command add_run_command(CLI::App& app) {
               } else {
                 // A config with a [test] table is a virtual laboratory test (src/lab/).
                 const toml::table root = parse_toml_file(*config);
-                if (root.contains("test")) run_lab_test(*config, root, *options);
-                else run_scene(*config, *options);
+                if (root.contains("test"))
+                  run_lab_test(*config, root, *options);
+                else
+                  run_scene(*config, *options);
               }
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());

@@ -18,8 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("grainlab ") + grainlab::version_string);
   std::vector<Command> commands{add_run_command(app), add_params_command(app),
-                                add_prepare_command(app),
-                                add_calibrate_command(app)};
+                                add_prepare_command(app), add_calibrate_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

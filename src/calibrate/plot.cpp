@@ -13,7 +13,9 @@
 
 namespace grainlab::calibrate {
 
-std::string plot_script_path() { return script_path("plot_calibration.py"); }
+std::string plot_script_path() {
+  return script_path("plot_calibration.py");
+}
 
 void plot_analysis(const nlohmann::json& analysis, const std::string& png_path) {
   namespace fs = std::filesystem;

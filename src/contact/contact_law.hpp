@@ -24,9 +24,9 @@ struct ContactHistoryRef {
 };
 
 struct ContactResponse {
-  Vec3 force_on_a;   // N (B receives the opposite)
-  Vec3 torque_on_a;  // N m, about A's centre
-  Vec3 torque_on_b;  // N m, about B's centre
+  Vec3 force_on_a;          // N (B receives the opposite)
+  Vec3 torque_on_a;         // N m, about A's centre
+  Vec3 torque_on_b;         // N m, about B's centre
   double normal_stiffness;  // k_n, N/m
   double normal_force;      // F_n, N
 };
@@ -34,7 +34,8 @@ struct ContactResponse {
 // k_n = pi E r* (Eq. 4) and c_n = 2 zeta sqrt(k_n m*) (Eq. 7 corrected) of one contact. They
 // depend only on the two bodies, so the particle-pair loop takes them from the contact store
 // (computed when the neighbour list is built) instead of evaluating them every step.
-inline NormalParams normal_params(const PairParams& pair, double effective_radius, double effective_mass) {
+inline NormalParams normal_params(const PairParams& pair, double effective_radius,
+                                  double effective_mass) {
   const double k_n = pair.stiffness_per_radius * effective_radius;
   return {k_n, 2.0 * pair.damping_ratio * std::sqrt(k_n * effective_mass)};
 }
@@ -63,7 +64,8 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
                                 pair.rolling_force_friction};
     keep_in_tangent_plane(*h.rolling_force_displacement, n);
     RollingForceHistory rh{*h.rolling_force_displacement};
-    tangential += rolling_force(rf, n, k.relative_angular_velocity, k.effective_radius, f_n, dt, rh);
+    tangential +=
+        rolling_force(rf, n, k.relative_angular_velocity, k.effective_radius, f_n, dt, rh);
     *h.rolling_force_displacement = rh.displacement;
   }
 
@@ -78,13 +80,14 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
   if constexpr (Rolling || Twisting) {
     const double d = 2.0 * k.effective_radius;
     const double k_theta = d * d * sliding.stiffness;  // Eq. 6
-    const double c_theta = pair.rolling_damping_ratio * 2.0 * std::sqrt(effective_inertia * k_theta);
+    const double c_theta =
+        pair.rolling_damping_ratio * 2.0 * std::sqrt(effective_inertia * k_theta);
     if constexpr (Rolling) {
       const RollingParams rolling{k_theta, c_theta, pair.arf * contact_radius};
       keep_in_tangent_plane(*h.rolling_angle, n);
       RollingHistory rh{*h.rolling_angle};
-      const Vec3 m = rolling_moment(rolling, rolling_rate(k.relative_angular_velocity, n), f_n,
-                                    dt, rh);
+      const Vec3 m =
+          rolling_moment(rolling, rolling_rate(k.relative_angular_velocity, n), f_n, dt, rh);
       *h.rolling_angle = rh.angle;
       r.torque_on_a += m;
       r.torque_on_b -= m;

@@ -10,8 +10,8 @@ namespace {
 // Motion of the overlap for unit approach speed and omega_0 = 1:
 //   U'' + 2 zeta U' + U = 0, U(0) = 0, U'(0) = 1; the force is U + 2 zeta U'.
 struct ForceZero {
-  double time;   // first t > 0 with U + 2 zeta U' = 0
-  double speed;  // -U'(time): separation speed
+  double time;     // first t > 0 with U + 2 zeta U' = 0
+  double speed;    // -U'(time): separation speed
   double overlap;  // U(time)
 };
 

@@ -16,13 +16,13 @@ struct Material {
 
 // What the laboratory measures (or the user chooses) for one pair of materials.
 struct PairProperties {
-  double restitution = 1.0;       // e, in (0, 1]
-  double friction = 0.0;          // mu_s >= 0
-  double rns = 0.5;               // k_s / k_n
-  double rzs = 0.0;               // c_s / c_n
-  double arf = 0.0;               // rolling friction: mu_theta = arf * a
-  double rolling_damping_ratio = -1.0;  // eta_theta; < 0 means "use the normal zeta"
-  double twisting_friction = 0.0;       // mu_t = twisting_friction * a; 0 = off
+  double restitution = 1.0;                    // e, in (0, 1]
+  double friction = 0.0;                       // mu_s >= 0
+  double rns = 0.5;                            // k_s / k_n
+  double rzs = 0.0;                            // c_s / c_n
+  double arf = 0.0;                            // rolling friction: mu_theta = arf * a
+  double rolling_damping_ratio = -1.0;         // eta_theta; < 0 means "use the normal zeta"
+  double twisting_friction = 0.0;              // mu_t = twisting_friction * a; 0 = off
   double rolling_force_stiffness_ratio = 0.0;  // k_r / k_n; 0 = off
   double rolling_force_friction = 0.0;         // mu_r
   std::optional<double> youngs_modulus;        // overrides the particles' E for this pair, Pa

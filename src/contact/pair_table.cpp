@@ -37,12 +37,16 @@ void PairTable::set(int a, int b, const PairProperties& p) {
   } else {
     const auto& ea = materials_[a].youngs_modulus;
     const auto& eb = materials_[b].youngs_modulus;
-    if (ea && eb) e_modulus = 2.0 * *ea * *eb / (*ea + *eb);
-    else if (ea) e_modulus = *ea;
-    else if (eb) e_modulus = *eb;
+    if (ea && eb)
+      e_modulus = 2.0 * *ea * *eb / (*ea + *eb);
+    else if (ea)
+      e_modulus = *ea;
+    else if (eb)
+      e_modulus = *eb;
   }
   if (!(e_modulus > 0.0))
-    throw std::invalid_argument("no Young's modulus: set youngs_modulus > 0 on a material or the pair");
+    throw std::invalid_argument(
+        "no Young's modulus: set youngs_modulus > 0 on a material or the pair");
 
   PairParams q;
   q.youngs_modulus = e_modulus;
@@ -54,7 +58,8 @@ void PairTable::set(int a, int b, const PairProperties& p) {
   q.rzs = p.rzs;
   q.friction = p.friction;
   q.arf = p.arf;
-  q.rolling_damping_ratio = p.rolling_damping_ratio >= 0.0 ? p.rolling_damping_ratio : q.damping_ratio;
+  q.rolling_damping_ratio =
+      p.rolling_damping_ratio >= 0.0 ? p.rolling_damping_ratio : q.damping_ratio;
   q.twisting_friction = p.twisting_friction;
   q.rolling_force_stiffness_ratio = p.rolling_force_stiffness_ratio;
   q.rolling_force_friction = p.rolling_force_friction;

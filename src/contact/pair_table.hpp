@@ -12,8 +12,8 @@
 namespace grainlab {
 
 struct PairParams {
-  double stiffness_per_radius = 0.0;  // pi E, Pa (k_n = pi E r*, Eq. 4)
-  double damping_ratio = 0.0;         // zeta used (returns e exactly with the clamp)
+  double stiffness_per_radius = 0.0;    // pi E, Pa (k_n = pi E r*, Eq. 4)
+  double damping_ratio = 0.0;           // zeta used (returns e exactly with the clamp)
   double textbook_damping_ratio = 0.0;  // zeta of Eq. 7, reported only
   double rns = 0.5, rzs = 0.0;
   double friction = 0.0;
@@ -30,7 +30,6 @@ struct PairParams {
 struct ContactPieces {
   bool rolling = false, twisting = false, rolling_force = false;
 };
-
 
 class PairTable {
  public:

@@ -12,8 +12,8 @@
 namespace grainlab {
 
 struct RollingParams {
-  double stiffness = 0.0;       // k_theta, N m/rad
-  double damping = 0.0;         // c_theta, N m s/rad
+  double stiffness = 0.0;         // k_theta, N m/rad
+  double damping = 0.0;           // c_theta, N m s/rad
   double moment_per_force = 0.0;  // mu_theta, m
 };
 
@@ -27,8 +27,8 @@ inline Vec3 rolling_rate(const Vec3& relative_angular_velocity, const Vec3& n) {
 }
 
 // Moment on body A, N m.
-inline Vec3 rolling_moment(const RollingParams& p, const Vec3& rate, double normal_force,
-                           double dt, RollingHistory& h) {
+inline Vec3 rolling_moment(const RollingParams& p, const Vec3& rate, double normal_force, double dt,
+                           RollingHistory& h) {
   return spring_slider(p.stiffness, p.damping, p.moment_per_force * normal_force, rate, dt,
                        h.angle);
 }
@@ -36,8 +36,8 @@ inline Vec3 rolling_moment(const RollingParams& p, const Vec3& rate, double norm
 // Radius of the circle in which two spheres' surfaces intersect (Eq. 10), m; for a sphere on a
 // wall (radius_b = 0 passed as "flat") it is sqrt(r_A^2 - (r_A - U_n)^2).
 inline double contact_circle_radius(double radius_a, double radius_b, double distance) {
-  const double x = (distance * distance + radius_b * radius_b - radius_a * radius_a) /
-                   (2.0 * distance);
+  const double x =
+      (distance * distance + radius_b * radius_b - radius_a * radius_a) / (2.0 * distance);
   const double a2 = radius_b * radius_b - x * x;
   return a2 > 0.0 ? std::sqrt(a2) : 0.0;
 }

@@ -22,8 +22,8 @@ struct SlidingHistory {
 // (see keep_in_tangent_plane); tangential_velocity is dU_s/dt.
 inline Vec3 sliding_force(const SlidingParams& p, const Vec3& tangential_velocity,
                           double normal_force, double dt, SlidingHistory& h) {
-  return spring_slider(p.stiffness, p.damping, p.friction * normal_force, tangential_velocity,
-                       dt, h.spring);
+  return spring_slider(p.stiffness, p.damping, p.friction * normal_force, tangential_velocity, dt,
+                       h.spring);
 }
 
 }  // namespace grainlab

@@ -20,8 +20,8 @@ inline void keep_in_tangent_plane(Vec3& history, const Vec3& n) {
 
 // Advances the history by rate*dt and returns stiffness*history + damping*rate, capped in length
 // at `cap`. Units follow the caller: displacement/force for sliding, angle/moment for rolling.
-inline Vec3 spring_slider(double stiffness, double damping, double cap, const Vec3& rate,
-                          double dt, Vec3& history) {
+inline Vec3 spring_slider(double stiffness, double damping, double cap, const Vec3& rate, double dt,
+                          Vec3& history) {
   history += dt * rate;
   Vec3 response = stiffness * history + damping * rate;
   const double magnitude2 = norm2(response);

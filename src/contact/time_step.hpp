@@ -15,7 +15,8 @@ inline double collision_duration(double min_radius, double density, double young
                                  double restitution) {
   const double l = std::log(restitution);
   return 2.0 * min_radius *
-         std::sqrt(density * (std::numbers::pi * std::numbers::pi + l * l) / (3.0 * youngs_modulus));
+         std::sqrt(density * (std::numbers::pi * std::numbers::pi + l * l) /
+                   (3.0 * youngs_modulus));
 }
 
 inline constexpr double default_dt_fraction = 0.1;

@@ -3,8 +3,8 @@
 //
 // The wall stress responds to the inward wall speed v as d(sigma)/dt = (k_sum / A) (v - v_req),
 // where v_req is the speed at which the specimen itself moves (dilation, compaction). With
-//   e = (sigma_target - sigma) A / (k_sum dt)        [m/s: the speed that cancels the error in one step]
-//   v = alpha_p e + integral,   integral += alpha_i e   (each step)
+//   e = (sigma_target - sigma) A / (k_sum dt)        [m/s: the speed that cancels the error in one
+//   step] v = alpha_p e + integral,   integral += alpha_i e   (each step)
 // the closed loop is a damped oscillator with omega = sqrt(alpha_i)/dt and damping ratio
 // alpha_p / (2 sqrt(alpha_i)). alpha_p = 0.02, alpha_i = alpha_p^2 / 4: critically damped (no
 // overshoot), time constant 100 steps (about 10 collision durations: slower than the contacts
@@ -18,9 +18,9 @@
 namespace grainlab {
 
 struct ServoSettings {
-  double target_stress = 0.0;   // Pa, compressive positive
-  double max_speed = 0.01;      // m/s
-  double proportional = 0.02;   // alpha_p
+  double target_stress = 0.0;  // Pa, compressive positive
+  double max_speed = 0.01;     // m/s
+  double proportional = 0.02;  // alpha_p
 };
 
 class StressServo {

@@ -66,9 +66,9 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
-      const ContactResponse r =
-          contact_response<R, T, RF>(row_params[p.material[j]], {c.normal_stiffness[e], c.normal_damping[e]}, k,
-                                     lever_i, lever_j, inertia, contact_radius, dt, h);
+      const ContactResponse r = contact_response<R, T, RF>(
+          row_params[p.material[j]], {c.normal_stiffness[e], c.normal_damping[e]}, k, lever_i,
+          lever_j, inertia, contact_radius, dt, h);
       c.force_on_first[e] = r.force_on_a;
       c.torque_on_first[e] = r.torque_on_a;
       c.torque_on_second[e] = r.torque_on_b;
@@ -122,7 +122,8 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
                           RF ? &c.rolling_force_displacement[e] : nullptr};
       const PairParams& pair = table(p.material[i], w.material);
       const ContactResponse resp = contact_response<R, T, RF>(
-          pair, normal_params(pair, k.effective_radius, k.effective_mass), k, lever, 0.0, inertia, contact_radius, dt, h);
+          pair, normal_params(pair, k.effective_radius, k.effective_mass), k, lever, 0.0, inertia,
+          contact_radius, dt, h);
       c.force_on_particle[e] = resp.force_on_a;
       c.torque_on_particle[e] = resp.torque_on_a;
       c.normal_stiffness[e] = resp.normal_stiffness;
@@ -136,16 +137,25 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
 // Calls F<R, T, RF>() for the runtime combination of optional pieces.
 template <template <bool, bool, bool> class F, class... Args>
 double dispatch(ContactPieces pieces, Args&&... args) {
-  const int code = (pieces.rolling ? 4 : 0) | (pieces.twisting ? 2 : 0) | (pieces.rolling_force ? 1 : 0);
+  const int code =
+      (pieces.rolling ? 4 : 0) | (pieces.twisting ? 2 : 0) | (pieces.rolling_force ? 1 : 0);
   switch (code) {
-    case 0: return F<false, false, false>::run(args...);
-    case 1: return F<false, false, true>::run(args...);
-    case 2: return F<false, true, false>::run(args...);
-    case 3: return F<false, true, true>::run(args...);
-    case 4: return F<true, false, false>::run(args...);
-    case 5: return F<true, false, true>::run(args...);
-    case 6: return F<true, true, false>::run(args...);
-    default: return F<true, true, true>::run(args...);
+    case 0:
+      return F<false, false, false>::run(args...);
+    case 1:
+      return F<false, false, true>::run(args...);
+    case 2:
+      return F<false, true, false>::run(args...);
+    case 3:
+      return F<false, true, true>::run(args...);
+    case 4:
+      return F<true, false, false>::run(args...);
+    case 5:
+      return F<true, false, true>::run(args...);
+    case 6:
+      return F<true, true, false>::run(args...);
+    default:
+      return F<true, true, true>::run(args...);
   }
 }
 
@@ -175,9 +185,9 @@ void Simulation::refresh_contact_constants() {
   for (long i = 0; i < n; ++i)
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
       const uint32_t j = c.partner[e];
-      const NormalParams q =
-          normal_params(table_(p.material[i], p.material[j]), p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]),
-                        1.0 / (p.inverse_mass[i] + p.inverse_mass[j]));
+      const NormalParams q = normal_params(table_(p.material[i], p.material[j]),
+                                           p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]),
+                                           1.0 / (p.inverse_mass[i] + p.inverse_mass[j]));
       c.normal_stiffness[e] = q.stiffness;
       c.normal_damping[e] = q.damping;
     }
@@ -189,9 +199,9 @@ void Simulation::compute_pair_forces() {
 }
 
 void Simulation::compute_wall_forces() {
-  max_overlap_fraction_ = std::max(
-      max_overlap_fraction_,
-      dispatch<WallKernel>(pieces_, particles_, walls_, table_, wall_contacts_, settings_.time_step));
+  max_overlap_fraction_ =
+      std::max(max_overlap_fraction_, dispatch<WallKernel>(pieces_, particles_, walls_, table_,
+                                                           wall_contacts_, settings_.time_step));
 }
 
 }  // namespace grainlab

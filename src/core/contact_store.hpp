@@ -17,10 +17,10 @@
 namespace grainlab {
 
 struct PairContacts {
-  std::vector<uint32_t> row_start;   // N + 1
-  std::vector<uint32_t> partner;     // per entry: second particle
-  std::vector<uint32_t> col_start;   // N + 1
-  std::vector<uint32_t> col_pair;    // entries where the particle is second
+  std::vector<uint32_t> row_start;  // N + 1
+  std::vector<uint32_t> partner;    // per entry: second particle
+  std::vector<uint32_t> col_start;  // N + 1
+  std::vector<uint32_t> col_pair;   // entries where the particle is second
   // history (m, rad)
   std::vector<Vec3> sliding_spring;
   std::vector<Vec3> rolling_angle;
@@ -39,8 +39,9 @@ struct PairContacts {
   template <class Io>
   void for_each_field(Io&& io) {
     io(row_start), io(partner), io(col_start), io(col_pair), io(sliding_spring), io(rolling_angle),
-        io(twisting_angle), io(rolling_force_displacement), io(normal_stiffness), io(normal_damping),
-        io(force_on_first), io(torque_on_first), io(torque_on_second), io(normal_force);
+        io(twisting_angle), io(rolling_force_displacement), io(normal_stiffness),
+        io(normal_damping), io(force_on_first), io(torque_on_first), io(torque_on_second),
+        io(normal_force);
   }
 };
 
@@ -61,8 +62,8 @@ struct WallContacts {
   template <class Io>
   void for_each_field(Io&& io) {
     io(row_start), io(wall), io(sliding_spring), io(rolling_angle), io(twisting_angle),
-        io(rolling_force_displacement), io(force_on_particle), io(torque_on_particle), io(normal_stiffness),
-        io(normal_force);
+        io(rolling_force_displacement), io(force_on_particle), io(torque_on_particle),
+        io(normal_stiffness), io(normal_force);
   }
 };
 

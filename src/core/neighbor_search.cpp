@@ -158,7 +158,8 @@ struct KeyedEntry {
 
 template <class Store>
 bool has_history(const Store& s, size_t e) {
-  return norm2(s.sliding_spring[e]) != 0.0 || (!s.rolling_angle.empty() && norm2(s.rolling_angle[e]) != 0.0) ||
+  return norm2(s.sliding_spring[e]) != 0.0 ||
+         (!s.rolling_angle.empty() && norm2(s.rolling_angle[e]) != 0.0) ||
          (!s.twisting_angle.empty() && s.twisting_angle[e] != 0.0) ||
          (!s.rolling_force_displacement.empty() && norm2(s.rolling_force_displacement[e]) != 0.0);
 }
@@ -202,13 +203,15 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   if (pairs.row_start.size() == p.size() + 1) {
     for (size_t i = 0; i < p.size(); ++i)
       for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
-        if (has_history(pairs, e)) old_pair_keys.push_back({pair_key(p.id[i], p.id[pairs.partner[e]]), e});
+        if (has_history(pairs, e))
+          old_pair_keys.push_back({pair_key(p.id[i], p.id[pairs.partner[e]]), e});
   }
   if (wall_contacts.row_start.size() == p.size() + 1) {
     for (size_t i = 0; i < p.size(); ++i)
       for (uint32_t e = wall_contacts.row_start[i]; e < wall_contacts.row_start[i + 1]; ++e)
         if (has_history(wall_contacts, e))
-          old_wall_keys.push_back({(static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e], e});
+          old_wall_keys.push_back(
+              {(static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e], e});
   }
   std::sort(old_pair_keys.begin(), old_pair_keys.end());
   std::sort(old_wall_keys.begin(), old_wall_keys.end());
@@ -224,7 +227,8 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   // Entry -> first particle, for the key of each new pair entry.
   std::vector<uint32_t> first(pairs.size());
   for (size_t i = 0; i < p.size(); ++i)
-    for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e) first[e] = static_cast<uint32_t>(i);
+    for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
+      first[e] = static_cast<uint32_t>(i);
   carry_history(old_pairs, old_pair_keys, pairs, pieces,
                 [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
   std::vector<uint32_t> owner(wall_contacts.size());

@@ -18,26 +18,26 @@ inline constexpr long parallel_threshold = 512;
 
 struct ParticleStore {
   // hot: 24 B per Vec3 field, 8 B per scalar, 4 B per index -> 172 B per particle
-  std::vector<Vec3> position;          // m
-  std::vector<Vec3> velocity;          // m/s
-  std::vector<Vec3> angular_velocity;  // rad/s
-  std::vector<Vec3> force;             // N, total of the current step
-  std::vector<Vec3> torque;            // N m
-  std::vector<double> radius;          // m
-  std::vector<double> inverse_mass;    // 1/kg (0: fixed)
-  std::vector<double> inverse_inertia; // 1/(kg m^2), sphere: I = 2/5 m r^2
-  std::vector<int32_t> material;       // index into the pair table
+  std::vector<Vec3> position;           // m
+  std::vector<Vec3> velocity;           // m/s
+  std::vector<Vec3> angular_velocity;   // rad/s
+  std::vector<Vec3> force;              // N, total of the current step
+  std::vector<Vec3> torque;             // N m
+  std::vector<double> radius;           // m
+  std::vector<double> inverse_mass;     // 1/kg (0: fixed)
+  std::vector<double> inverse_inertia;  // 1/(kg m^2), sphere: I = 2/5 m r^2
+  std::vector<int32_t> material;        // index into the pair table
   // cold
-  std::vector<uint32_t> id;             // permanent number (0..N-1 in input order)
-  std::vector<Vec3> rotation;           // accumulated rotation vector (integral of w dt), rad
-  std::vector<Vec3> initial_position;   // m, for displacement output
+  std::vector<uint32_t> id;            // permanent number (0..N-1 in input order)
+  std::vector<Vec3> rotation;          // accumulated rotation vector (integral of w dt), rad
+  std::vector<Vec3> initial_position;  // m, for displacement output
 
   size_t size() const { return position.size(); }
 
   void add(uint32_t particle_id, int32_t material_index, double sphere_radius, double density,
            const Vec3& x, const Vec3& v, const Vec3& w, bool fixed) {
-    const double mass = density * 4.0 / 3.0 * std::numbers::pi * sphere_radius * sphere_radius *
-                        sphere_radius;
+    const double mass =
+        density * 4.0 / 3.0 * std::numbers::pi * sphere_radius * sphere_radius * sphere_radius;
     const double inertia = 0.4 * mass * sphere_radius * sphere_radius;
     position.push_back(x);
     velocity.push_back(fixed ? Vec3{} : v);
@@ -59,8 +59,9 @@ struct ParticleStore {
   // Every field, for checkpoints (core/state_io.hpp).
   template <class Io>
   void for_each_field(Io&& io) {
-    io(position), io(velocity), io(angular_velocity), io(force), io(torque), io(radius), io(inverse_mass),
-        io(inverse_inertia), io(material), io(id), io(rotation), io(initial_position);
+    io(position), io(velocity), io(angular_velocity), io(force), io(torque), io(radius),
+        io(inverse_mass), io(inverse_inertia), io(material), io(id), io(rotation),
+        io(initial_position);
   }
 };
 

@@ -30,8 +30,8 @@ class SphereGrid {
  private:
   long coord(double x) const { return static_cast<long>(std::floor(x / cell_)); }
   static uint64_t pack(long x, long y, long z) {
-    return (static_cast<uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<uint64_t>(y & 0x1FFFFF) << 21) |
-           static_cast<uint64_t>(z & 0x1FFFFF);
+    return (static_cast<uint64_t>(x & 0x1FFFFF) << 42) |
+           (static_cast<uint64_t>(y & 0x1FFFFF) << 21) | static_cast<uint64_t>(z & 0x1FFFFF);
   }
   uint64_t key(const Vec3& c) const { return pack(coord(c.x), coord(c.y), coord(c.z)); }
   double cell_;
@@ -55,7 +55,8 @@ long insert_random_spheres(std::vector<Sphere>& spheres, const InsertionRegion& 
       Sphere s{{}, r};
       if (!region.cylinder) {
         for (int d = 0; d < 3; ++d)
-          s.centre[d] = region.box_min[d] + r + (region.box_max[d] - region.box_min[d] - 2 * r) * uniform01(rng);
+          s.centre[d] = region.box_min[d] + r +
+                        (region.box_max[d] - region.box_min[d] - 2 * r) * uniform01(rng);
       } else {
         const double reach = region.radius - r;
         const double rho = reach * std::sqrt(uniform01(rng)), phi = 2.0 * M_PI * uniform01(rng);

@@ -15,9 +15,9 @@ namespace grainlab {
 
 struct InsertionRegion {
   bool cylinder = false;
-  Vec3 box_min, box_max;                 // box
-  Vec3 base;                             // cylinder bottom centre, axis +z
-  double radius = 0.0, height = 0.0;     // cylinder
+  Vec3 box_min, box_max;              // box
+  Vec3 base;                          // cylinder bottom centre, axis +z
+  double radius = 0.0, height = 0.0;  // cylinder
 };
 
 struct Sphere {
@@ -26,7 +26,9 @@ struct Sphere {
 };
 
 // Deterministic uniform double in [0, 1) from a 64-bit generator (same on every platform).
-inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+inline double uniform01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 // Appends `count` spheres with diameters uniform in [d_min, d_max] to `spheres` (which may hold
 // obstacles already). Returns the number placed (less than count when the region is full).

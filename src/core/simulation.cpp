@@ -1,8 +1,9 @@
 #include "core/simulation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 namespace grainlab {
 
@@ -137,7 +138,8 @@ void Simulation::check_health() const {
   if (max_overlap_fraction_ > settings_.max_overlap_fraction) {
     throw BlowUpError(fmt::format(
         "the run blew up at t = {:.6g} s (step {}): two bodies overlap by {:.2f} % of a radius "
-        "(limit {:.2f} %). The contacts are too soft for the load or the time step ({:.3g} s) is too "
+        "(limit {:.2f} %). The contacts are too soft for the load or the time step ({:.3g} s) is "
+        "too "
         "large; lower simulation.dt_fraction (or dt), slow the walls, or raise the stiffness.",
         time_, step_count_, 100.0 * max_overlap_fraction_, 100.0 * settings_.max_overlap_fraction,
         settings_.time_step));
@@ -169,8 +171,10 @@ void write_walls(StateWriter& out, const std::vector<Wall>& walls) {
   out.value<uint64_t>(walls.size());
   for (const Wall& w : walls) {
     out.text(w.name);
-    out.value(w.shape), out.value(w.material), out.value(w.point), out.value(w.normal), out.value(w.axis_u);
-    out.value(w.axis_v), out.value(w.half_u), out.value(w.half_v), out.value(w.axis), out.value(w.radius);
+    out.value(w.shape), out.value(w.material), out.value(w.point), out.value(w.normal),
+        out.value(w.axis_u);
+    out.value(w.axis_v), out.value(w.half_u), out.value(w.half_v), out.value(w.axis),
+        out.value(w.radius);
     out.value(w.velocity), out.value(w.mass), out.value(w.external_force), out.value(w.force);
     out.value(w.contact_stiffness), out.value(w.contact_count);
   }
@@ -184,7 +188,8 @@ std::vector<Wall> read_walls(StateReader& in) {
     w.normal = in.value<Vec3>(), w.axis_u = in.value<Vec3>(), w.axis_v = in.value<Vec3>();
     w.half_u = in.value<double>(), w.half_v = in.value<double>(), w.axis = in.value<Vec3>();
     w.radius = in.value<double>(), w.velocity = in.value<Vec3>(), w.mass = in.value<double>();
-    w.external_force = in.value<Vec3>(), w.force = in.value<Vec3>(), w.contact_stiffness = in.value<double>();
+    w.external_force = in.value<Vec3>(), w.force = in.value<Vec3>(),
+    w.contact_stiffness = in.value<double>();
     w.contact_count = in.value<int>();
   }
   return walls;
@@ -206,12 +211,14 @@ void Simulation::save_state(StateWriter& out) const {
   const_cast<WallContacts&>(wall_contacts_).for_each_field(write);
   const_cast<NeighborSearch&>(neighbors_).for_each_field(write);
   out.value(const_cast<NeighborSearch&>(neighbors_).rebuild_count_ref());
-  out.value(time_), out.value(step_count_), out.value(max_overlap_fraction_), out.value(max_speed2_);
+  out.value(time_), out.value(step_count_), out.value(max_overlap_fraction_),
+      out.value(max_speed2_);
 }
 
 Simulation::Simulation(StateReader& in, PairTable table)
     : table_(std::move(table)), neighbors_(1.0) {
-  if (in.value<uint64_t>() != state_magic) throw std::runtime_error("not a grainlab simulation state");
+  if (in.value<uint64_t>() != state_magic)
+    throw std::runtime_error("not a grainlab simulation state");
   settings_ = in.value<SimulationSettings>();
   pieces_ = in.value<ContactPieces>();
   std::vector<PairParams> entries;

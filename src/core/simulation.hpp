@@ -19,11 +19,11 @@
 namespace grainlab {
 
 struct SimulationSettings {
-  double time_step = 0.0;     // dt, s
-  double dt_fraction = 0.0;   // dt / t_c when dt was derived (0 when given explicitly)
-  Vec3 gravity;               // m/s^2
-  double skin = 0.0;          // Verlet skin, m
-  double max_speed = 100.0;   // m/s; a faster particle means the run has blown up
+  double time_step = 0.0;              // dt, s
+  double dt_fraction = 0.0;            // dt / t_c when dt was derived (0 when given explicitly)
+  Vec3 gravity;                        // m/s^2
+  double skin = 0.0;                   // Verlet skin, m
+  double max_speed = 100.0;            // m/s; a faster particle means the run has blown up
   double max_overlap_fraction = 0.05;  // of the smaller radius
 };
 
@@ -63,8 +63,8 @@ class Simulation {
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }
 
-  double kinetic_energy() const;      // translational + rotational, J
-  long touching_pair_count() const;   // particle-particle contacts with F_n > 0
+  double kinetic_energy() const;     // translational + rotational, J
+  long touching_pair_count() const;  // particle-particle contacts with F_n > 0
   double max_overlap_fraction() const { return max_overlap_fraction_; }
 
  private:

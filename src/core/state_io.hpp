@@ -48,7 +48,8 @@ class StateReader {
   void array(std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     const uint64_t n = value<uint64_t>();
-    if (n > (bytes_.size() - at_) / (sizeof(T) ? sizeof(T) : 1)) throw std::runtime_error("checkpoint truncated");
+    if (n > (bytes_.size() - at_) / (sizeof(T) ? sizeof(T) : 1))
+      throw std::runtime_error("checkpoint truncated");
     v.resize(n);
     std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
   }

@@ -30,9 +30,12 @@ WallGap wall_gap(const Wall& w, const Vec3& centre) {
 
 bool inside_wall(const Wall& w, const Vec3& centre) {
   switch (w.shape) {
-    case WallShape::plane: return dot(centre - w.point, w.normal) > 0.0;
-    case WallShape::rectangle: return true;
-    case WallShape::cylinder: return wall_gap(w, centre).gap > 0.0;
+    case WallShape::plane:
+      return dot(centre - w.point, w.normal) > 0.0;
+    case WallShape::rectangle:
+      return true;
+    case WallShape::cylinder:
+      return wall_gap(w, centre).gap > 0.0;
   }
   return true;
 }
@@ -73,9 +76,12 @@ void finish_wall_geometry(Wall& w) {
 
 const char* shape_name(WallShape s) {
   switch (s) {
-    case WallShape::plane: return "plane";
-    case WallShape::rectangle: return "rectangle";
-    case WallShape::cylinder: return "cylinder";
+    case WallShape::plane:
+      return "plane";
+    case WallShape::rectangle:
+      return "rectangle";
+    case WallShape::cylinder:
+      return "cylinder";
   }
   return "?";
 }

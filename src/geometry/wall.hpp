@@ -21,20 +21,20 @@ struct Wall {
   std::string name;
   WallShape shape = WallShape::plane;
   int material = 0;
-  Vec3 point;                 // m
-  Vec3 normal{0.0, 0.0, 1.0};  // plane, rectangle (unit)
-  Vec3 axis_u, axis_v;        // rectangle (unit, in-plane)
+  Vec3 point;                         // m
+  Vec3 normal{0.0, 0.0, 1.0};         // plane, rectangle (unit)
+  Vec3 axis_u, axis_v;                // rectangle (unit, in-plane)
   double half_u = 0.0, half_v = 0.0;  // rectangle, m
-  Vec3 axis{0.0, 0.0, 1.0};   // cylinder (unit)
-  double radius = 0.0;        // cylinder, m
-  Vec3 velocity;              // m/s (prescribed, or integrated when mass > 0)
+  Vec3 axis{0.0, 0.0, 1.0};           // cylinder (unit)
+  double radius = 0.0;                // cylinder, m
+  Vec3 velocity;                      // m/s (prescribed, or integrated when mass > 0)
   // A wall with mass > 0 translates under the particles' force plus external_force (a load or
   // a rope set by a test between steps), e.g. the slider of the sliding-friction test.
-  double mass = 0.0;          // kg; 0 = motion prescribed
-  Vec3 external_force;        // N
+  double mass = 0.0;    // kg; 0 = motion prescribed
+  Vec3 external_force;  // N
 
   // Per-step outputs of the force computation.
-  Vec3 force;                     // N, exerted by the particles on the wall
+  Vec3 force;                      // N, exerted by the particles on the wall
   double contact_stiffness = 0.0;  // N/m, sum of k_n over touching contacts
   int contact_count = 0;
 };

@@ -41,24 +41,29 @@ std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const Time
       "r* [m]", "e", "mu_s", "k_n [N/m]", "k_s [N/m]", "k_th [Nm]", "c_n [Ns/m]", "c_s [Ns/m]",
       "zeta_Eq7", "zeta", "t_c [s]");
   for (const DerivedPair& p : pairs) {
-    const std::string name = fmt::format("{}-{}{}", p.material_a, p.material_b, p.wall_pair ? " (wall)" : "");
+    const std::string name =
+        fmt::format("{}-{}{}", p.material_a, p.material_b, p.wall_pair ? " (wall)" : "");
     out += fmt::format(
-        "{:<28} {:>9.4g} {:>6.3f} {:>5.3f} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} {:>8.5f} "
+        "{:<28} {:>9.4g} {:>6.3f} {:>5.3f} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} "
+        "{:>8.5f} "
         "{:>8.5f} {:>11.4e}\n",
-        name, p.effective_radius, p.restitution, p.friction, p.normal_stiffness, p.sliding_stiffness,
-        p.rolling_stiffness, p.normal_damping, p.sliding_damping, p.damping_ratio_textbook,
-        p.damping_ratio, p.collision_duration);
+        name, p.effective_radius, p.restitution, p.friction, p.normal_stiffness,
+        p.sliding_stiffness, p.rolling_stiffness, p.normal_damping, p.sliding_damping,
+        p.damping_ratio_textbook, p.damping_ratio, p.collision_duration);
     if (p.arf > 0.0)
-      out += fmt::format("{:<28} rolling: ARF = {:.4g}, mu_theta = ARF a = {:.4e} m at U_n = 0.5 % r*\n",
-                         "", p.arf, p.rolling_moment_per_force_at_half_percent);
+      out += fmt::format(
+          "{:<28} rolling: ARF = {:.4g}, mu_theta = ARF a = {:.4e} m at U_n = 0.5 % r*\n", "",
+          p.arf, p.rolling_moment_per_force_at_half_percent);
   }
   out += fmt::format(
       "\ncollision duration t_c (Eq. 11, smallest over the pairs) = {:.4e} s\n"
       "time step dt = {:.4e} s = {:.3g} t_c{}\n"
-      "zeta_Eq7: textbook damping ratio -ln e / sqrt(pi^2 + ln^2 e); zeta: the ratio grainlab uses,\n"
+      "zeta_Eq7: textbook damping ratio -ln e / sqrt(pi^2 + ln^2 e); zeta: the ratio grainlab "
+      "uses,\n"
       "which returns e exactly with the no-tension clamp (docs/contact-model.md).\n",
       dt.collision_duration, dt.time_step, dt.dt_fraction,
-      dt.explicit_dt ? " (set explicitly)" : " (dt_fraction; integrating at t_c itself is unstable)");
+      dt.explicit_dt ? " (set explicitly)"
+                     : " (dt_fraction; integrating at t_c itself is unstable)");
   return out;
 }
 

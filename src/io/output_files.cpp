@@ -31,15 +31,17 @@ void prepare_output_dir(const std::string& dir, bool overwrite) {
         const std::string name = entry.path().filename().string();
         const std::string ext = entry.path().extension().string();
         if (name == "summary.json" || name == "trace.csv" || name == "final.csv" ||
-            name == "particles.pvd" || name == "curve.csv" || name == "curve.png" || name == "specimen.csv" ||
-            name == "specimen.json" || name == "trajectory.csv" || name == "force_time.csv" ||
-            name.ends_with(".partial") || name == "vtk" || name == "checkpoint.bin" || ext == ".tmp")
+            name == "particles.pvd" || name == "curve.csv" || name == "curve.png" ||
+            name == "specimen.csv" || name == "specimen.json" || name == "trajectory.csv" ||
+            name == "force_time.csv" || name.ends_with(".partial") || name == "vtk" ||
+            name == "checkpoint.bin" || ext == ".tmp")
           fs::remove_all(entry.path(), ec);
       }
     }
   }
   fs::create_directories(dir, ec);
-  if (ec) throw ConfigError(fmt::format("--out {}: cannot create directory: {}", dir, ec.message()));
+  if (ec)
+    throw ConfigError(fmt::format("--out {}: cannot create directory: {}", dir, ec.message()));
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
@@ -73,12 +75,15 @@ void CsvStream::close() {
   fs::rename(path_ + ".partial", path_);
 }
 
-std::string exact(double v) { return fmt::format("{:.17g}", v); }
+std::string exact(double v) {
+  return fmt::format("{:.17g}", v);
+}
 
 std::string trace_row(double t, const ParticleStore& p, size_t i) {
   const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", exact(t), p.id[i], exact(x.x), exact(x.y),
-                     exact(x.z), exact(v.x), exact(v.y), exact(v.z), exact(w.x), exact(w.y), exact(w.z));
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", exact(t), p.id[i], exact(x.x),
+                     exact(x.y), exact(x.z), exact(v.x), exact(v.y), exact(v.z), exact(w.x),
+                     exact(w.y), exact(w.z));
 }
 
 std::vector<size_t> indices_by_id(const ParticleStore& p) {
@@ -91,9 +96,9 @@ std::string final_table(const ParticleStore& p) {
   std::string out = "id,material,radius,x,y,z,vx,vy,vz,wx,wy,wz\n";
   for (size_t i : indices_by_id(p)) {
     const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", p.id[i], p.material[i], exact(p.radius[i]),
-                       exact(x.x), exact(x.y), exact(x.z), exact(v.x), exact(v.y), exact(v.z),
-                       exact(w.x), exact(w.y), exact(w.z));
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", p.id[i], p.material[i],
+                       exact(p.radius[i]), exact(x.x), exact(x.y), exact(x.z), exact(v.x),
+                       exact(v.y), exact(v.z), exact(w.x), exact(w.y), exact(w.z));
   }
   return out;
 }
@@ -101,7 +106,10 @@ std::string final_table(const ParticleStore& p) {
 namespace {
 void vector_array(std::string& out, const char* name, const std::vector<size_t>& order,
                   auto&& value) {
-  out += fmt::format("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
+  out += fmt::format(
+      "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">\n",
+      name);
   for (size_t i : order) {
     const Vec3 v = value(i);
     out += fmt::format("{:.9g} {:.9g} {:.9g}\n", v.x, v.y, v.z);
@@ -114,7 +122,8 @@ std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contac
   const std::vector<size_t> order = indices_by_id(p);
   const size_t n = p.size();
   std::string out =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n"
       "  <UnstructuredGrid>\n";
   out += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
   out += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
@@ -122,7 +131,9 @@ std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contac
   for (size_t i : order) out += fmt::format("{:.9g}\n", p.radius[i]);
   out += "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">\n";
   for (size_t i : order) out += fmt::format("{}\n", p.id[i]);
-  out += "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n";
+  out +=
+      "        </DataArray>\n        <DataArray type=\"Int32\" Name=\"material\" "
+      "format=\"ascii\">\n";
   for (size_t i : order) out += fmt::format("{}\n", p.material[i]);
   out += "        </DataArray>\n";
   if (contact_count) {
@@ -132,16 +143,20 @@ std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contac
   }
   vector_array(out, "velocity", order, [&](size_t i) { return p.velocity[i]; });
   vector_array(out, "angular_velocity", order, [&](size_t i) { return p.angular_velocity[i]; });
-  vector_array(out, "displacement", order, [&](size_t i) { return p.position[i] - p.initial_position[i]; });
+  vector_array(out, "displacement", order,
+               [&](size_t i) { return p.position[i] - p.initial_position[i]; });
   vector_array(out, "rotation", order, [&](size_t i) { return p.rotation[i]; });
   out += "      </PointData>\n      <Points>\n";
   vector_array(out, "position", order, [&](size_t i) { return p.position[i]; });
   out += "      </Points>\n      <Cells>\n";
   out += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (size_t k = 0; k < n; ++k) out += fmt::format("{}\n", k);
-  out += "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  out +=
+      "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+      "format=\"ascii\">\n";
   for (size_t k = 0; k < n; ++k) out += fmt::format("{}\n", k + 1);
-  out += "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  out +=
+      "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (size_t k = 0; k < n; ++k) out += "1\n";  // VTK_VERTEX
   out += "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
@@ -163,7 +178,8 @@ std::string walls_vtu(const std::vector<Wall>& walls, double extent) {
       quad(w.point, w.half_u * w.axis_u, w.half_v * w.axis_v);
     } else if (w.shape == WallShape::plane) {
       const Vec3 t = std::abs(w.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-      const Vec3 u = (1.0 / norm(t - dot(t, w.normal) * w.normal)) * (t - dot(t, w.normal) * w.normal);
+      const Vec3 u =
+          (1.0 / norm(t - dot(t, w.normal) * w.normal)) * (t - dot(t, w.normal) * w.normal);
       quad(w.point, 0.5 * extent * u, 0.5 * extent * cross(w.normal, u));
     } else {
       const Vec3 u = w.axis_u, v = cross(w.axis, w.axis_u);
@@ -178,24 +194,30 @@ std::string walls_vtu(const std::vector<Wall>& walls, double extent) {
     }
   }
   std::string out =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\">\n"
       "  <UnstructuredGrid>\n";
-  out += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n", points.size(), quads.size());
+  out += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n",
+                     points.size(), quads.size());
   out += "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (const Vec3& p : points) out += fmt::format("{:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
   out += "        </DataArray>\n      </Points>\n      <Cells>\n";
   out += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (const auto& q : quads) out += fmt::format("{} {} {} {}\n", q[0], q[1], q[2], q[3]);
-  out += "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  out +=
+      "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+      "format=\"ascii\">\n";
   for (size_t k = 0; k < quads.size(); ++k) out += fmt::format("{}\n", 4 * (k + 1));
-  out += "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  out +=
+      "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (size_t k = 0; k < quads.size(); ++k) out += "9\n";  // VTK_QUAD
   out += "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
 }
 
 std::string pvd_index(const std::vector<std::pair<double, std::string>>& snapshots) {
-  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   for (const auto& [t, file] : snapshots)
     out += fmt::format("    <DataSet timestep=\"{:.9g}\" file=\"{}\"/>\n", t, file);
   out += "  </Collection>\n</VTKFile>\n";

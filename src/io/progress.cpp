@@ -24,8 +24,10 @@ void Progress::update(double fraction, const std::string& detail) {
   const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
   const std::string text = fmt::format("{}: {:5.1f} %  {}  elapsed {:.0f} s  ETA {:.0f} s", label_,
                                        100.0 * fraction, detail, elapsed, eta);
-  if (tty_) fmt::print(stderr, "\r{:<100}", text);
-  else fmt::print(stderr, "{}\n", text);
+  if (tty_)
+    fmt::print(stderr, "\r{:<100}", text);
+  else
+    fmt::print(stderr, "{}\n", text);
   std::fflush(stderr);
 }
 
@@ -34,8 +36,10 @@ void Progress::finish(const std::string& detail) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::string text = fmt::format("{}: done, {}  wall time {:.1f} s", label_, detail, elapsed);
-  if (tty_) fmt::print(stderr, "\r{:<100}\n", text);
-  else fmt::print(stderr, "{}\n", text);
+  if (tty_)
+    fmt::print(stderr, "\r{:<100}\n", text);
+  else
+    fmt::print(stderr, "{}\n", text);
 }
 
 }  // namespace grainlab

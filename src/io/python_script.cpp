@@ -21,8 +21,9 @@ std::string script_path(const std::string& name) {
 void run_python_script(const std::string& name, const std::vector<std::string>& arguments) {
   const std::string script = script_path(name);
   if (!std::filesystem::exists(script))
-    throw std::runtime_error(fmt::format(
-        "script {} not found (set GRAINLAB_SCRIPTS_DIR to the directory holding {})", script, name));
+    throw std::runtime_error(
+        fmt::format("script {} not found (set GRAINLAB_SCRIPTS_DIR to the directory holding {})",
+                    script, name));
   const char* py = std::getenv("GRAINLAB_PYTHON");
   const std::string python = (py && *py) ? py : "/usr/bin/python3";
   std::vector<std::string> args{python, script};

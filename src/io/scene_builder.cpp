@@ -46,7 +46,8 @@ ParticleStore build_particles(const SceneConfig& c) {
     region.base = b.cylinder_base;
     region.radius = b.cylinder_radius;
     region.height = b.cylinder_height;
-    const long placed = insert_random_spheres(spheres, region, b.count, b.diameter_min, b.diameter_max, rng);
+    const long placed =
+        insert_random_spheres(spheres, region, b.count, b.diameter_min, b.diameter_max, rng);
     if (placed < b.count)
       throw ConfigError(fmt::format(
           "{} line {}: particles.count: only {} of {} particles fit in the region without overlap "
@@ -62,21 +63,24 @@ ParticleStore build_particles(const SceneConfig& c) {
   const size_t explicit_count = c.particles.size();
   for (size_t i = 0; i < spheres.size(); ++i)
     for (size_t j = i + 1; j < std::max(explicit_count, i + 1); ++j) {
-      const double gap = norm(spheres[j].centre - spheres[i].centre) - spheres[i].radius - spheres[j].radius;
+      const double gap =
+          norm(spheres[j].centre - spheres[i].centre) - spheres[i].radius - spheres[j].radius;
       if (-gap > 0.01 * std::min(spheres[i].radius, spheres[j].radius))
-        throw ConfigError(fmt::format(
-            "{} line {}: particle[{}] overlaps particle[{}] (line {}) by {:.3g} m, more than 1 % of "
-            "the smaller radius: move them apart",
-            c.file, line[j], j + 1, i + 1, line[i], -gap));
+        throw ConfigError(
+            fmt::format("{} line {}: particle[{}] overlaps particle[{}] (line {}) by {:.3g} m, "
+                        "more than 1 % of "
+                        "the smaller radius: move them apart",
+                        c.file, line[j], j + 1, i + 1, line[i], -gap));
     }
   for (size_t i = 0; i < spheres.size(); ++i)
     for (size_t w = 0; w < c.walls.size(); ++w)
       if (!inside_wall(c.walls[w], spheres[i].centre))
         throw ConfigError(fmt::format(
-            "{} line {}: particle {} at ({:.4g}, {:.4g}, {:.4g}) m lies outside wall[{}] '{}' (line "
+            "{} line {}: particle {} at ({:.4g}, {:.4g}, {:.4g}) m lies outside wall[{}] '{}' "
+            "(line "
             "{}): particles must be on the side the wall's normal points to (inside a cylinder)",
-            c.file, line[i], i, spheres[i].centre.x, spheres[i].centre.y, spheres[i].centre.z, w + 1,
-            c.walls[w].name, c.wall_lines[w]));
+            c.file, line[i], i, spheres[i].centre.x, spheres[i].centre.y, spheres[i].centre.z,
+            w + 1, c.walls[w].name, c.wall_lines[w]));
 
   ParticleStore store;
   for (size_t i = 0; i < spheres.size(); ++i) {
@@ -147,7 +151,8 @@ std::vector<DerivedPair> derive_pairs(const SceneConfig& c, const PairTable& tab
       throw ConfigError(fmt::format(
           "{}: no [[pair]] for materials \"{}\" and \"{}\", which touch in this scene: add "
           "[[pair]] materials = [\"{}\", \"{}\"] with restitution and friction",
-          c.file, c.materials[a].name, c.materials[b].name, c.materials[a].name, c.materials[b].name));
+          c.file, c.materials[a].name, c.materials[b].name, c.materials[a].name,
+          c.materials[b].name));
   };
   const int m = static_cast<int>(c.materials.size());
   for (int a = 0; a < m; ++a) {
@@ -156,7 +161,8 @@ std::vector<DerivedPair> derive_pairs(const SceneConfig& c, const PairTable& tab
       if (min_radius[b] == 0.0) continue;
       // A material alone in the scene (one bead) cannot touch itself: its pair is reported when
       // defined but not required.
-      const bool can_touch = a != b || std::count(particles.material.begin(), particles.material.end(), a) > 1;
+      const bool can_touch =
+          a != b || std::count(particles.material.begin(), particles.material.end(), a) > 1;
       if (!can_touch && !table(a, b).defined) continue;
       if (can_touch) require(a, b);
       out.push_back(derive(c, table, a, b, min_radius[a], min_radius[b], false));
@@ -175,16 +181,18 @@ std::vector<DerivedPair> derive_pairs(const SceneConfig& c, const PairTable& tab
 TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedPair>& pairs) {
   TimeStepChoice t;
   t.collision_duration = INFINITY;
-  for (const DerivedPair& p : pairs) t.collision_duration = std::min(t.collision_duration, p.collision_duration);
+  for (const DerivedPair& p : pairs)
+    t.collision_duration = std::min(t.collision_duration, p.collision_duration);
   if (c.time_step) {
     t.time_step = *c.time_step;
     t.explicit_dt = true;
     t.dt_fraction = std::isfinite(t.collision_duration) ? t.time_step / t.collision_duration : 0.0;
   } else {
     if (!std::isfinite(t.collision_duration))
-      throw ConfigError(fmt::format("{}: simulation: no contacts possible, so no collision duration "
-                                    "to derive dt from: set simulation.dt",
-                                    c.file));
+      throw ConfigError(
+          fmt::format("{}: simulation: no contacts possible, so no collision duration "
+                      "to derive dt from: set simulation.dt",
+                      c.file));
     t.dt_fraction = c.dt_fraction;
     t.time_step = c.dt_fraction * t.collision_duration;
   }

@@ -17,16 +17,17 @@ namespace grainlab {
 // Constants of one material pair evaluated for the smallest particles that use it.
 struct DerivedPair {
   std::string material_a, material_b;
-  bool wall_pair = false;       // b is a wall material
-  double radius_a = 0.0;        // smallest particle radius of material a, m
-  double radius_b = 0.0;        // of material b (0 for a wall), m
+  bool wall_pair = false;                               // b is a wall material
+  double radius_a = 0.0;                                // smallest particle radius of material a, m
+  double radius_b = 0.0;                                // of material b (0 for a wall), m
   double effective_radius = 0.0, effective_mass = 0.0;  // m, kg
-  double normal_stiffness = 0.0, sliding_stiffness = 0.0, rolling_stiffness = 0.0;  // N/m, N/m, N m/rad
+  double normal_stiffness = 0.0, sliding_stiffness = 0.0,
+         rolling_stiffness = 0.0;                      // N/m, N/m, N m/rad
   double normal_damping = 0.0, sliding_damping = 0.0;  // N s/m
   double damping_ratio_textbook = 0.0, damping_ratio = 0.0;
   double restitution = 0.0, friction = 0.0, arf = 0.0;
   double rolling_moment_per_force_at_half_percent = 0.0;  // mu_theta at U_n = 0.5 % of r*, m
-  double collision_duration = 0.0;  // s, Eq. 11 (textbook damping)
+  double collision_duration = 0.0;                        // s, Eq. 11 (textbook damping)
 };
 
 struct TimeStepChoice {

@@ -42,7 +42,8 @@ void read_simulation(const toml::table& root, SceneConfig& c) {
   if (c.time_step && r.has("dt_fraction")) r.fail("dt", "give either dt or dt_fraction, not both");
   c.dt_fraction = r.number_or("dt_fraction", Quantity::dimensionless, 0.1);
   if (!(c.dt_fraction > 0.0 && c.dt_fraction <= 0.5))
-    r.fail("dt_fraction", "expected a fraction of the collision duration in (0, 0.5] (default 0.1)");
+    r.fail("dt_fraction",
+           "expected a fraction of the collision duration in (0, 0.5] (default 0.1)");
   c.gravity = r.vec3_or("gravity", Quantity::acceleration, {});
   const long seed = r.integer_or("seed", 1);
   if (seed < 0) r.fail("seed", "expected an integer >= 0");
@@ -62,7 +63,8 @@ void read_materials(const toml::table& root, SceneConfig& c) {
     Material m;
     m.name = r.string("name");
     for (const Material& other : c.materials)
-      if (other.name == m.name) r.fail("name", fmt::format("material \"{}\" defined twice", m.name));
+      if (other.name == m.name)
+        r.fail("name", fmt::format("material \"{}\" defined twice", m.name));
     m.youngs_modulus = r.optional_number("youngs_modulus", Quantity::pressure);
     if (m.youngs_modulus && !(*m.youngs_modulus > 0.0))
       r.fail("youngs_modulus", "expected Young's modulus E > 0 Pa");
@@ -89,9 +91,11 @@ void read_pairs(const toml::table& root, SceneConfig& c) {
     PairProperties& q = p.properties;
     q.restitution = r.number("restitution", Quantity::dimensionless);
     if (!(q.restitution > 0.0 && q.restitution <= 1.0))
-      r.fail("restitution", fmt::format("expected a restitution coefficient e in (0, 1], got {}", q.restitution));
+      r.fail("restitution",
+             fmt::format("expected a restitution coefficient e in (0, 1], got {}", q.restitution));
     q.friction = r.number("friction", Quantity::dimensionless);
-    if (!(q.friction >= 0.0)) r.fail("friction", fmt::format("expected a friction coefficient >= 0, got {}", q.friction));
+    if (!(q.friction >= 0.0))
+      r.fail("friction", fmt::format("expected a friction coefficient >= 0, got {}", q.friction));
     q.rns = r.number_or("rns", Quantity::dimensionless, 0.5);
     if (!(q.rns > 0.0)) r.fail("rns", "expected k_s/k_n > 0");
     q.rzs = r.number_or("rzs", Quantity::dimensionless, 0.0);
@@ -103,7 +107,8 @@ void read_pairs(const toml::table& root, SceneConfig& c) {
       r.fail("rolling_damping_ratio", "expected a damping ratio >= 0");
     q.twisting_friction = r.number_or("twisting_friction", Quantity::dimensionless, 0.0);
     if (!(q.twisting_friction >= 0.0)) r.fail("twisting_friction", "expected a coefficient >= 0");
-    q.rolling_force_stiffness_ratio = r.number_or("rolling_force_stiffness_ratio", Quantity::dimensionless, 0.0);
+    q.rolling_force_stiffness_ratio =
+        r.number_or("rolling_force_stiffness_ratio", Quantity::dimensionless, 0.0);
     q.rolling_force_friction = r.number_or("rolling_force_friction", Quantity::dimensionless, 0.0);
     if (!(q.rolling_force_stiffness_ratio >= 0.0 && q.rolling_force_friction >= 0.0))
       r.fail("rolling_force_stiffness_ratio", "expected rolling force parameters >= 0");
@@ -133,10 +138,12 @@ void read_particles(const toml::table& root, SceneConfig& c) {
       p.line = r.line_of("");
       p.material = material_index(r, "material", r.string("material"), c.materials);
       require_particle_material(r, c.materials[p.material]);
-      if (r.has("diameter") == r.has("radius")) r.fail("radius", "give exactly one of radius or diameter");
+      if (r.has("diameter") == r.has("radius"))
+        r.fail("radius", "give exactly one of radius or diameter");
       p.radius = r.has("radius") ? r.number("radius", Quantity::length)
                                  : 0.5 * r.number("diameter", Quantity::length);
-      if (!(p.radius > 0.0)) r.fail(r.has("radius") ? "radius" : "diameter", "expected a size > 0 m");
+      if (!(p.radius > 0.0))
+        r.fail(r.has("radius") ? "radius" : "diameter", "expected a size > 0 m");
       p.position = r.vec3("position", Quantity::length);
       p.velocity = r.vec3_or("velocity", Quantity::velocity, {});
       p.angular_velocity = r.vec3_or("angular_velocity", Quantity::angular_velocity, {});
@@ -191,7 +198,8 @@ void read_particles(const toml::table& root, SceneConfig& c) {
     }
   }
   if (c.particles.empty() && c.batches.empty())
-    throw ConfigError(fmt::format("{}: no particles: add [[particle]] or [[particles]] entries", c.file));
+    throw ConfigError(
+        fmt::format("{}: no particles: add [[particle]] or [[particles]] entries", c.file));
 }
 
 void read_walls(const toml::table& root, SceneConfig& c) {
@@ -220,7 +228,8 @@ void read_walls(const toml::table& root, SceneConfig& c) {
       w.axis = r.vec3_or("axis", Quantity::dimensionless, {0.0, 0.0, 1.0});
       w.radius = r.number("radius", Quantity::length);
     } else {
-      r.fail("type", fmt::format("expected \"plane\", \"rectangle\" or \"cylinder\", got \"{}\"", type));
+      r.fail("type",
+             fmt::format("expected \"plane\", \"rectangle\" or \"cylinder\", got \"{}\"", type));
     }
     try {
       finish_wall_geometry(w);
@@ -244,7 +253,8 @@ void read_output(const toml::table& root, SceneConfig& c) {
     c.output.interval = r.number_or("interval", Quantity::time, c.output.interval);
     if (!(c.output.interval > 0.0)) r.fail("interval", "expected an output interval > 0 s");
     if (const toml::node* t = r.node("trace")) {
-      if (t->is_string() && (*t->value<std::string>() == "all" || *t->value<std::string>() == "none")) {
+      if (t->is_string() &&
+          (*t->value<std::string>() == "all" || *t->value<std::string>() == "none")) {
         c.output.trace_all = *t->value<std::string>() == "all";
       } else if (const toml::array* ids = t->as_array()) {
         c.output.trace_all = false;
@@ -268,13 +278,15 @@ void read_output(const toml::table& root, SceneConfig& c) {
 
 void check_top_level_keys(const toml::table& root, const std::string& file, bool allow_test) {
   for (const auto& [key, value] : root) {
-    static const char* known[] = {"simulation", "material", "pair", "particle", "particles", "wall", "output"};
+    static const char* known[] = {"simulation", "material", "pair",  "particle",
+                                  "particles",  "wall",     "output"};
     bool ok = allow_test && key.str() == "test";
     for (const char* k : known) ok = ok || key.str() == k;
     if (!ok)
-      throw ConfigError(fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
-                                    "material, pair, particle, particles, wall, output{})",
-                                    file, value.source().begin.line, key.str(), allow_test ? ", test" : ""));
+      throw ConfigError(
+          fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
+                      "material, pair, particle, particles, wall, output{})",
+                      file, value.source().begin.line, key.str(), allow_test ? ", test" : ""));
   }
 }
 

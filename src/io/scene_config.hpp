@@ -37,30 +37,30 @@ struct ParticleBatch {
   long count = 0;
   double diameter_min = 0.0, diameter_max = 0.0;
   RegionShape region = RegionShape::box;
-  Vec3 box_min, box_max;          // box
-  Vec3 cylinder_base;             // cylinder: centre of the bottom face, axis along z
+  Vec3 box_min, box_max;  // box
+  Vec3 cylinder_base;     // cylinder: centre of the bottom face, axis along z
   double cylinder_radius = 0.0, cylinder_height = 0.0;
   Vec3 velocity;
   int line = 0;
 };
 
 struct OutputSettings {
-  double interval = 0.0;           // s
+  double interval = 0.0;  // s
   bool trace_all = true;
   std::vector<uint32_t> trace_ids;  // when not trace_all
   bool vtk = false;
-  double vtk_interval = 0.0;       // s
+  double vtk_interval = 0.0;  // s
 };
 
 struct SceneConfig {
   std::string file;
-  double duration = 0.0;                 // s
-  std::optional<double> time_step;       // s, explicit dt
-  double dt_fraction = 0.1;              // dt = dt_fraction * t_c
-  Vec3 gravity;                          // m/s^2
+  double duration = 0.0;            // s
+  std::optional<double> time_step;  // s, explicit dt
+  double dt_fraction = 0.1;         // dt = dt_fraction * t_c
+  Vec3 gravity;                     // m/s^2
   uint64_t seed = 1;
-  std::optional<double> skin;            // m
-  double max_speed = 100.0;              // m/s
+  std::optional<double> skin;  // m
+  double max_speed = 100.0;    // m/s
   std::vector<Material> materials;
   std::vector<PairEntry> pairs;
   std::vector<ParticleEntry> particles;
@@ -68,7 +68,7 @@ struct SceneConfig {
   std::vector<Wall> walls;
   std::vector<int> wall_lines;
   OutputSettings output;
-  toml::table source;                    // the file as read, echoed into summary.json
+  toml::table source;  // the file as read, echoed into summary.json
 };
 
 // Reads and validates a scene file; throws ConfigError naming file, line and key.

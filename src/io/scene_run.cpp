@@ -48,11 +48,13 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
   const std::string dir = options.out_dir;
   const long total_steps = static_cast<long>(std::ceil(config.duration / dt.time_step - 1e-9));
   if (!options.quiet)
-    fmt::print(stderr,
-               "grainlab run: {} particles, {} walls, dt = {:.4g} s ({} t_c, t_c = {:.4g} s), {} steps\n",
-               sim.particles().size(), sim.walls().size(), dt.time_step,
-               dt.explicit_dt ? fmt::format("{:.3g}", dt.dt_fraction) : fmt::format("{:.3g}", dt.dt_fraction),
-               dt.collision_duration, total_steps);
+    fmt::print(
+        stderr,
+        "grainlab run: {} particles, {} walls, dt = {:.4g} s ({} t_c, t_c = {:.4g} s), {} steps\n",
+        sim.particles().size(), sim.walls().size(), dt.time_step,
+        dt.explicit_dt ? fmt::format("{:.3g}", dt.dt_fraction)
+                       : fmt::format("{:.3g}", dt.dt_fraction),
+        dt.collision_duration, total_steps);
 
   std::vector<uint32_t> traced = config.output.trace_ids;
   if (config.output.trace_all)
@@ -75,7 +77,8 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
       snapshots.push_back({sim.time(), name});
       if (snapshots.size() == 1 && !sim.walls().empty()) {
         double extent = 0.0;
-        for (const Vec3& x : p.position) extent = std::max({extent, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+        for (const Vec3& x : p.position)
+          extent = std::max({extent, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
         write_file_atomically(dir + "/vtk/walls.vtu", walls_vtu(sim.walls(), 2.5 * extent + 1e-3));
       }
       write_file_atomically(dir + "/particles.pvd", pvd_index(snapshots));
@@ -88,14 +91,16 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
     // Output k is due at the first step whose time reaches k * interval.
     const double t = step * dt.time_step;
     const bool trace_due = t >= next_trace * config.output.interval - 0.5 * dt.time_step;
-    const bool vtk_due = config.output.vtk && t >= next_vtk * config.output.vtk_interval - 0.5 * dt.time_step;
+    const bool vtk_due =
+        config.output.vtk && t >= next_vtk * config.output.vtk_interval - 0.5 * dt.time_step;
     if (trace_due) ++next_trace;
     if (vtk_due) ++next_vtk;
     if (trace_due || vtk_due) write_outputs(step, trace_due, vtk_due);
     if (step == total_steps) break;
     sim.step();
     if ((step & 1023) == 0)
-      progress.update(static_cast<double>(step) / total_steps, fmt::format("t = {:.4g} s", sim.time()));
+      progress.update(static_cast<double>(step) / total_steps,
+                      fmt::format("t = {:.4g} s", sim.time()));
   }
   trace.close();
   const double wall_time =
@@ -117,9 +122,11 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
   summary["touching_contacts_final"] = sim.touching_pair_count();
   summary["threads"] = omp_get_max_threads();
   summary["wall_time_s"] = wall_time;
-  summary["particle_steps_per_s"] = wall_time > 0 ? sim.particles().size() * sim.step_count() / wall_time : 0.0;
+  summary["particle_steps_per_s"] =
+      wall_time > 0 ? sim.particles().size() * sim.step_count() / wall_time : 0.0;
   write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
-  progress.finish(fmt::format("{} steps, {} neighbour-list rebuilds", sim.step_count(), sim.rebuild_count()));
+  progress.finish(
+      fmt::format("{} steps, {} neighbour-list rebuilds", sim.step_count(), sim.rebuild_count()));
 }
 
 }  // namespace grainlab

@@ -13,27 +13,37 @@ using UnitTable = std::vector<std::pair<std::string_view, double>>;
 const UnitTable& units_of(Quantity q) {
   static const UnitTable none{{"", 1.0}, {"%", 0.01}};
   static const UnitTable length{{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}};
-  static const UnitTable time{{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"µs", 1e-6}, {"ns", 1e-9},
-                              {"min", 60.0}, {"h", 3600.0}};
+  static const UnitTable time{{"s", 1.0},   {"ms", 1e-3},  {"us", 1e-6}, {"µs", 1e-6},
+                              {"ns", 1e-9}, {"min", 60.0}, {"h", 3600.0}};
   static const UnitTable pressure{{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
   static const UnitTable density{{"kg/m3", 1.0}, {"kg/m^3", 1.0}, {"g/cm3", 1e3}, {"g/cm^3", 1e3}};
-  static const UnitTable velocity{{"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2},
-                                  {"mm/min", 1e-3 / 60.0}, {"m/min", 1.0 / 60.0}};
+  static const UnitTable velocity{
+      {"m/s", 1.0}, {"mm/s", 1e-3}, {"cm/s", 1e-2}, {"mm/min", 1e-3 / 60.0}, {"m/min", 1.0 / 60.0}};
   static const UnitTable acceleration{{"m/s2", 1.0}, {"m/s^2", 1.0}, {"g", 9.80665}};
   static const UnitTable angular{{"rad/s", 1.0}, {"rpm", 2.0 * 3.14159265358979323846 / 60.0}};
   static const UnitTable mass{{"kg", 1.0}, {"g", 1e-3}, {"mg", 1e-6}};
   static const UnitTable force{{"N", 1.0}, {"mN", 1e-3}, {"kN", 1e3}};
   switch (q) {
-    case Quantity::dimensionless: return none;
-    case Quantity::length: return length;
-    case Quantity::time: return time;
-    case Quantity::pressure: return pressure;
-    case Quantity::density: return density;
-    case Quantity::velocity: return velocity;
-    case Quantity::acceleration: return acceleration;
-    case Quantity::angular_velocity: return angular;
-    case Quantity::mass: return mass;
-    case Quantity::force: return force;
+    case Quantity::dimensionless:
+      return none;
+    case Quantity::length:
+      return length;
+    case Quantity::time:
+      return time;
+    case Quantity::pressure:
+      return pressure;
+    case Quantity::density:
+      return density;
+    case Quantity::velocity:
+      return velocity;
+    case Quantity::acceleration:
+      return acceleration;
+    case Quantity::angular_velocity:
+      return angular;
+    case Quantity::mass:
+      return mass;
+    case Quantity::force:
+      return force;
   }
   return none;
 }
@@ -48,16 +58,26 @@ std::string_view trim(std::string_view s) {
 
 const char* si_unit(Quantity q) {
   switch (q) {
-    case Quantity::dimensionless: return "-";
-    case Quantity::length: return "m";
-    case Quantity::time: return "s";
-    case Quantity::pressure: return "Pa";
-    case Quantity::density: return "kg/m^3";
-    case Quantity::velocity: return "m/s";
-    case Quantity::acceleration: return "m/s^2";
-    case Quantity::angular_velocity: return "rad/s";
-    case Quantity::mass: return "kg";
-    case Quantity::force: return "N";
+    case Quantity::dimensionless:
+      return "-";
+    case Quantity::length:
+      return "m";
+    case Quantity::time:
+      return "s";
+    case Quantity::pressure:
+      return "Pa";
+    case Quantity::density:
+      return "kg/m^3";
+    case Quantity::velocity:
+      return "m/s";
+    case Quantity::acceleration:
+      return "m/s^2";
+    case Quantity::angular_velocity:
+      return "rad/s";
+    case Quantity::mass:
+      return "kg";
+    case Quantity::force:
+      return "N";
   }
   return "?";
 }

@@ -8,8 +8,16 @@
 namespace grainlab {
 
 enum class Quantity {
-  dimensionless, length, time, pressure, density, velocity, acceleration, angular_velocity,
-  mass, force
+  dimensionless,
+  length,
+  time,
+  pressure,
+  density,
+  velocity,
+  acceleration,
+  angular_velocity,
+  mass,
+  force
 };
 
 const char* si_unit(Quantity q);

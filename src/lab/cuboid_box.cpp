@@ -2,7 +2,8 @@
 
 namespace grainlab {
 
-std::vector<Wall> cuboid_walls(const Vec3& lo, const Vec3& hi, int lateral_material, int platen_material) {
+std::vector<Wall> cuboid_walls(const Vec3& lo, const Vec3& hi, int lateral_material,
+                               int platen_material) {
   const char* names[6] = {"x_low", "x_high", "y_low", "y_high", "bottom_platen", "top_platen"};
   std::vector<Wall> walls(6);
   for (int k = 0; k < 6; ++k) {
@@ -21,15 +22,22 @@ std::vector<Wall> cuboid_walls(const Vec3& lo, const Vec3& hi, int lateral_mater
   return walls;
 }
 
-Vec3 box_low(const std::vector<Wall>& w) { return {w[x_low].point.x, w[y_low].point.y, w[bottom].point.z}; }
-Vec3 box_high(const std::vector<Wall>& w) { return {w[x_high].point.x, w[y_high].point.y, w[top].point.z}; }
+Vec3 box_low(const std::vector<Wall>& w) {
+  return {w[x_low].point.x, w[y_low].point.y, w[bottom].point.z};
+}
+Vec3 box_high(const std::vector<Wall>& w) {
+  return {w[x_high].point.x, w[y_high].point.y, w[top].point.z};
+}
 
 double wall_area(const std::vector<Wall>& walls, int k) {
   const Vec3 d = box_high(walls) - box_low(walls);
   switch (k / 2) {
-    case 0: return d.y * d.z;
-    case 1: return d.x * d.z;
-    default: return d.x * d.y;
+    case 0:
+      return d.y * d.z;
+    case 1:
+      return d.x * d.z;
+    default:
+      return d.x * d.y;
   }
 }
 

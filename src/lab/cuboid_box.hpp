@@ -11,7 +11,8 @@ namespace grainlab {
 
 enum BoxWall { x_low = 0, x_high = 1, y_low = 2, y_high = 3, bottom = 4, top = 5 };
 
-std::vector<Wall> cuboid_walls(const Vec3& lo, const Vec3& hi, int lateral_material, int platen_material);
+std::vector<Wall> cuboid_walls(const Vec3& lo, const Vec3& hi, int lateral_material,
+                               int platen_material);
 
 // Current extent from the wall positions (walls must be those of cuboid_walls, in order).
 Vec3 box_low(const std::vector<Wall>& walls);

@@ -4,8 +4,9 @@
 
 namespace grainlab {
 
-DepositionResult deposit(ParticleStore particles, const std::vector<Wall>& walls, const PairTable& table,
-                         const SimulationSettings& settings, const DepositionSettings& d) {
+DepositionResult deposit(ParticleStore particles, const std::vector<Wall>& walls,
+                         const PairTable& table, const SimulationSettings& settings,
+                         const DepositionSettings& d) {
   Simulation sim(std::move(particles), walls, table, settings);
   const long check_steps = std::max(1L, static_cast<long>(d.check_interval / settings.time_step));
   DepositionResult out;

@@ -10,10 +10,10 @@
 namespace grainlab {
 
 struct DepositionSettings {
-  double min_time = 0.0;          // s before rest is checked (e.g. the free-fall time)
-  double max_time = 1.0;          // s of simulated time at most
-  double rest_speed = 2e-3;       // m/s: at rest when the mean particle speed falls below
-  double check_interval = 1e-3;   // s between checks
+  double min_time = 0.0;         // s before rest is checked (e.g. the free-fall time)
+  double max_time = 1.0;         // s of simulated time at most
+  double rest_speed = 2e-3;      // m/s: at rest when the mean particle speed falls below
+  double check_interval = 1e-3;  // s between checks
 };
 
 struct DepositionResult {
@@ -23,7 +23,8 @@ struct DepositionResult {
   bool at_rest = false;
 };
 
-DepositionResult deposit(ParticleStore particles, const std::vector<Wall>& walls, const PairTable& table,
-                         const SimulationSettings& settings, const DepositionSettings& deposition);
+DepositionResult deposit(ParticleStore particles, const std::vector<Wall>& walls,
+                         const PairTable& table, const SimulationSettings& settings,
+                         const DepositionSettings& deposition);
 
 }  // namespace grainlab

@@ -36,7 +36,8 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   const double t_approach = std::sqrt(2.0 * fall / g);
   const double vz0 = -g * t_approach;
   const double x_launch = 0.0, x_start = s.launch_speed * t_approach;
-  const double x_impact = x_start + s.launch_speed * (approach_gap / -vz0);  // approx. landing point
+  const double x_impact =
+      x_start + s.launch_speed * (approach_gap / -vz0);  // approx. landing point
 
   ParticleStore p;
   std::vector<Wall> walls;
@@ -70,7 +71,8 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
     const double vz = sim.particles().velocity[bead_index()].z;
     sim.step();
     const bool touching = bottom_height() < 0.0 ||
-                          (s.target_is_bead && norm(sim.particles().position[0] - sim.particles().position[1]) < 2 * r);
+                          (s.target_is_bead &&
+                           norm(sim.particles().position[0] - sim.particles().position[1]) < 2 * r);
     if (touching && contact_start < 0) {
       contact_start = sim.time();
       vz_before = vz;
@@ -98,10 +100,12 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   const double frame = 1.0 / s.frame_rate;
   for (double t = 0.0; t <= t_apex_after + 0.5 * (t_apex_after - t_contact_end_abs); t += frame) {
     if (t <= t_approach) {
-      out.trajectory.push_back({t, x_launch + s.launch_speed * t, r + s.launch_height - 0.5 * g * t * t});
+      out.trajectory.push_back(
+          {t, x_launch + s.launch_speed * t, r + s.launch_height - 0.5 * g * t * t});
     } else if (t >= t_contact_end_abs) {
       const double tau = t - t_contact_end_abs;
-      out.trajectory.push_back({t, x_after + vx_after * tau, r + z_after + vz_after * tau - 0.5 * g * tau * tau});
+      out.trajectory.push_back(
+          {t, x_after + vx_after * tau, r + z_after + vz_after * tau - 0.5 * g * tau * tau});
     }  // frames during the ~10 microseconds of contact are not seen by a camera
   }
   return out;
@@ -125,24 +129,29 @@ void run_flat_throw(const std::string& path, const toml::table& root, const RunO
   s.gravity = t.number_or("gravity", Quantity::acceleration, 9.81);
   s.frame_rate = t.number_or("frame_rate", Quantity::dimensionless, 1000.0);
   if (!(s.diameter > 0)) t.fail("diameter", "expected a bead diameter > 0 m");
-  if (!(s.launch_height > 0.1 * s.diameter)) t.fail("launch_height", "expected H > a tenth of the bead diameter");
-  if (!(s.dt_fraction > 0 && s.dt_fraction <= 0.1)) t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.1]");
+  if (!(s.launch_height > 0.1 * s.diameter))
+    t.fail("launch_height", "expected H > a tenth of the bead diameter");
+  if (!(s.dt_fraction > 0 && s.dt_fraction <= 0.1))
+    t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.1]");
   if (!(s.gravity > 0)) t.fail("gravity", "expected g > 0 m/s^2");
   if (!(s.frame_rate > 0)) t.fail("frame_rate", "expected frames per second > 0");
   PairTable table = build_pair_table(c);
   const int bead = table.find(s.bead_material), target = table.find(s.target_material);
   if (bead < 0) t.fail("bead_material", fmt::format("unknown material \"{}\"", s.bead_material));
-  if (target < 0) t.fail("target_material", fmt::format("unknown material \"{}\"", s.target_material));
+  if (target < 0)
+    t.fail("target_material", fmt::format("unknown material \"{}\"", s.target_material));
   if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
   if (!table(bead, target).defined)
-    t.fail("target_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.target_material));
+    t.fail("target_material",
+           fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.target_material));
   s.target_is_bead = t.boolean_or("target_is_bead", bead == target);
   t.finish();
 
   prepare_output_dir(options.out_dir, options.overwrite);
   const FlatThrowResult r = simulate_flat_throw(s, table, *c.materials[bead].density);
   std::string csv = "t_s,x_m,z_m\n";
-  for (const auto& f : r.trajectory) csv += fmt::format("{},{},{}\n", exact(f.t), exact(f.x), exact(f.z));
+  for (const auto& f : r.trajectory)
+    csv += fmt::format("{},{},{}\n", exact(f.t), exact(f.x), exact(f.z));
   write_file_atomically(options.out_dir + "/trajectory.csv", csv);
   nlohmann::json j;
   j["grainlab_version"] = version_string;
@@ -165,10 +174,12 @@ void run_flat_throw(const std::string& path, const toml::table& root, const RunO
   j["trajectory_note"] = "trajectory.csv: bead centre, target surface at z = 0 (use --plate-z 0)";
   write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
   if (!options.quiet)
-    fmt::print("flat throw {} on {}: e_input = {:.4f}, e_sim = sqrt(h/H) = {:.4f} (H = {:.4g} m, h = {:.4g} m), "
-               "velocity ratio {:.4f}\n",
-               s.bead_material, s.target_material, r.restitution_input, r.restitution_simulated,
-               r.launch_height, r.rebound_height, r.restitution_velocity_ratio);
+    fmt::print(
+        "flat throw {} on {}: e_input = {:.4f}, e_sim = sqrt(h/H) = {:.4f} (H = {:.4g} m, h = "
+        "{:.4g} m), "
+        "velocity ratio {:.4f}\n",
+        s.bead_material, s.target_material, r.restitution_input, r.restitution_simulated,
+        r.launch_height, r.rebound_height, r.restitution_velocity_ratio);
 }
 
 }  // namespace grainlab

@@ -16,23 +16,23 @@ namespace grainlab {
 
 struct FlatThrowSettings {
   std::string bead_material, target_material;
-  double diameter = 2e-3;        // m
-  double launch_height = 0.1;    // H, m (bead bottom above target surface)
-  double launch_speed = 0.2;     // m/s, horizontal
-  double spin = 0.0;             // rad/s about the axis normal to the throw plane (+y)
-  bool target_is_bead = false;   // glass on glass: a fixed bead of the target material
-  double dt_fraction = 0.002;    // of t_c: single impacts need a fine step (docs/contact-model.md)
-  double gravity = 9.81;         // m/s^2
-  double frame_rate = 1000.0;    // camera frames per second for the trajectory file
+  double diameter = 2e-3;       // m
+  double launch_height = 0.1;   // H, m (bead bottom above target surface)
+  double launch_speed = 0.2;    // m/s, horizontal
+  double spin = 0.0;            // rad/s about the axis normal to the throw plane (+y)
+  bool target_is_bead = false;  // glass on glass: a fixed bead of the target material
+  double dt_fraction = 0.002;   // of t_c: single impacts need a fine step (docs/contact-model.md)
+  double gravity = 9.81;        // m/s^2
+  double frame_rate = 1000.0;   // camera frames per second for the trajectory file
 };
 
 struct FlatThrowResult {
   double restitution_input = 0.0;
-  double restitution_simulated = 0.0;        // sqrt(h/H)
-  double restitution_velocity_ratio = 0.0;   // -v_z after / v_z before the contact
+  double restitution_simulated = 0.0;                // sqrt(h/H)
+  double restitution_velocity_ratio = 0.0;           // -v_z after / v_z before the contact
   double launch_height = 0.0, rebound_height = 0.0;  // H, h (m)
-  double contact_duration = 0.0;             // s
-  double time_step = 0.0;                    // s
+  double contact_duration = 0.0;                     // s
+  double time_step = 0.0;                            // s
   long contact_steps = 0;
   struct Frame {
     double t, x, z;  // bead centre; target surface at z = 0
@@ -45,6 +45,7 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
                                     double bead_density);
 
 // `grainlab run` entry for `[test] type = "flat_throw"`.
-void run_flat_throw(const std::string& config_path, const toml::table& root, const RunOptions& options);
+void run_flat_throw(const std::string& config_path, const toml::table& root,
+                    const RunOptions& options);
 
 }  // namespace grainlab

@@ -5,7 +5,9 @@
 namespace grainlab {
 namespace {
 volatile std::sig_atomic_t requested = 0;
-extern "C" void on_signal(int) { requested = 1; }
+extern "C" void on_signal(int) {
+  requested = 1;
+}
 }  // namespace
 
 void install_interrupt_handler() {
@@ -13,6 +15,8 @@ void install_interrupt_handler() {
   std::signal(SIGTERM, on_signal);
 }
 
-bool interrupt_requested() { return requested != 0; }
+bool interrupt_requested() {
+  return requested != 0;
+}
 
 }  // namespace grainlab

@@ -26,6 +26,7 @@ struct LabTestEntry {
 const std::vector<LabTestEntry>& lab_tests();
 
 // Runs the test named by root["test"]["type"]; ConfigError when it is missing or unknown.
-void run_lab_test(const std::string& config_path, const toml::table& root, const RunOptions& options);
+void run_lab_test(const std::string& config_path, const toml::table& root,
+                  const RunOptions& options);
 
 }  // namespace grainlab

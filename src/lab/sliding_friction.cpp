@@ -36,7 +36,8 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
   const double r_min = 0.5 * s.diameter * 0.99;
   const PairParams& pp = table(bead, bead);
   SimulationSettings out;
-  out.time_step = s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
+  out.time_step =
+      s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
   out.dt_fraction = s.dt_fraction;
   out.gravity = {0.0, 0.0, -s.gravity};
   out.skin = 0.1 * s.diameter;
@@ -60,7 +61,9 @@ Bed fixed_bead_patch(const SlidingFrictionSettings& s, int bead, double density)
     for (double y = c.y - half_width; y <= c.y + half_width + 1e-12; y += d)
       bed.particles.add(id++, bead, r, density, {x, y, r}, {}, {}, true);
   if (bed.particles.size() == 0)
-    throw std::runtime_error("sliding friction: the slider is too short for the slide distance (no fixed bead stays under it)");
+    throw std::runtime_error(
+        "sliding friction: the slider is too short for the slide distance (no fixed bead stays "
+        "under it)");
   bed.top = d;
   return bed;
 }
@@ -68,7 +71,8 @@ Bed fixed_bead_patch(const SlidingFrictionSettings& s, int bead, double density)
 Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead, double density) {
   if (s.fixed_bed) return fixed_bead_patch(s, bead, density);
   const double d = s.diameter, L = s.bed_length, W = s.bed_width;
-  const long count = static_cast<long>(s.layers) * static_cast<long>(L / d) * static_cast<long>(W / d);
+  const long count =
+      static_cast<long>(s.layers) * static_cast<long>(L / d) * static_cast<long>(W / d);
   // Insert loosely (solid fraction 0.2) above the floor, then let the beads fall and settle.
   const double insert_height = count * (M_PI / 6.0) * d * d * d / (0.2 * L * W);
   std::vector<Sphere> spheres;
@@ -80,7 +84,8 @@ Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead,
     throw std::runtime_error("sliding friction: could not insert the bed's beads");
   Bed bed;
   for (size_t i = 0; i < spheres.size(); ++i)
-    bed.particles.add(static_cast<uint32_t>(i), bead, spheres[i].radius, density, spheres[i].centre, {}, {}, false);
+    bed.particles.add(static_cast<uint32_t>(i), bead, spheres[i].radius, density, spheres[i].centre,
+                      {}, {}, false);
   bed.walls = {box_plane(bead, {0, 0, 0}, {0, 0, 1}), box_plane(bead, {0, 0, 0}, {1, 0, 0}),
                box_plane(bead, {L, 0, 0}, {-1, 0, 0}), box_plane(bead, {0, 0, 0}, {0, 1, 0}),
                box_plane(bead, {0, W, 0}, {0, -1, 0})};
@@ -88,7 +93,8 @@ Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead,
   dep.min_time = std::sqrt(2.0 * insert_height / s.gravity);
   dep.max_time = dep.min_time + 0.2;
   dep.rest_speed = 1e-3;
-  DepositionResult r = deposit(std::move(bed.particles), bed.walls, table, settings_for(s, table, bead, density), dep);
+  DepositionResult r = deposit(std::move(bed.particles), bed.walls, table,
+                               settings_for(s, table, bead, density), dep);
   bed.particles = std::move(r.particles);
   for (Vec3& v : bed.particles.velocity) v = {};
   for (Vec3& w : bed.particles.angular_velocity) w = {};
@@ -97,8 +103,8 @@ Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead,
   return bed;
 }
 
-LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const PairTable& table, int bead,
-                    int slider_material, double density, double load) {
+LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const PairTable& table,
+                    int bead, int slider_material, double density, double load) {
   const double d = s.diameter, W = s.bed_width;
   const double slider_length = s.slider_length;
   Wall slider;
@@ -125,8 +131,9 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   const double guide_y = sim.walls()[k].point.y;
   auto step = [&] {
     Wall& w = sim.walls()[k];
-    w.external_force = {s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x),
-                        0.0, -load};
+    w.external_force = {
+        s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x),
+        0.0, -load};
     sim.step();
     Wall& after = sim.walls()[k];
     after.velocity.y = 0.0;
@@ -152,7 +159,8 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
     if (n % record_every == 0) {
       const Wall& w = sim.walls()[k];
       anchor = start_anchor + s.speed * (sim.time() - t0);  // rope end at the slider's time
-      const double rope_force = s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x);
+      const double rope_force =
+          s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x);
       run.record.push_back({sim.time() - t0, anchor - start_anchor, rope_force, w.point.z});
     }
   }
@@ -172,8 +180,9 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
 
 }  // namespace
 
-SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s, const PairTable& table,
-                                                double density, Progress* progress) {
+SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
+                                                const PairTable& table, double density,
+                                                Progress* progress) {
   const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
   SlidingFrictionResult out;
   out.friction_input = table(bead, slider).friction;
@@ -186,8 +195,9 @@ SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s
     out.runs.push_back(pull_slider(bed, s, table, bead, slider, density, s.loads[i]));
     points.push_back({i + 1, s.speed * 6e4, s.loads[i], out.runs.back().mean_force});
     if (progress)
-      progress->update(double(i + 1) / s.loads.size(),
-                       fmt::format("P = {:.3g} N: F = {:.4g} N", s.loads[i], out.runs.back().mean_force));
+      progress->update(
+          double(i + 1) / s.loads.size(),
+          fmt::format("P = {:.3g} N: F = {:.4g} N", s.loads[i], out.runs.back().mean_force));
   }
   if (points.size() >= 2) {
     const calibrate::OriginFit fit = calibrate::fit_through_origin(points);

@@ -20,13 +20,13 @@ namespace grainlab {
 
 struct SlidingFrictionSettings {
   std::string bead_material = "glass", slider_material;
-  double diameter = 2e-3;            // m (beads uniform within +-1 %)
-  double bed_length = 0.04;          // m, along the pull (x)
-  double bed_width = 0.016;          // m
-  double slider_length = 0.01;       // m (the slider spans the bed width less a bead diameter)
-  int layers = 3;                    // bead count = layers * (length/d) * (width/d)
+  double diameter = 2e-3;       // m (beads uniform within +-1 %)
+  double bed_length = 0.04;     // m, along the pull (x)
+  double bed_width = 0.016;     // m
+  double slider_length = 0.01;  // m (the slider spans the bed width less a bead diameter)
+  int layers = 3;               // bead count = layers * (length/d) * (width/d)
   std::vector<double> loads{0.1, 0.2, 0.3, 0.4};  // P, N
-  double speed = 0.05;               // V, m/s
+  double speed = 0.05;                            // V, m/s
   double slide_distance = 0.012;     // m pulled per load (several diameters: steady sliding)
   double spring_stiffness = 5000.0;  // rope + sensor, N/m
   double slider_mass = 0.01;         // kg
@@ -34,34 +34,37 @@ struct SlidingFrictionSettings {
   // for the whole pull (no edge ever meets a bead), so F = mu_s P exactly.
   bool fixed_bed = false;
   double dt_fraction = 0.1;
-  double gravity = 9.81;             // m/s^2
+  double gravity = 9.81;  // m/s^2
   unsigned long seed = 1;
 };
 
 struct LoadRun {
-  double load = 0.0;                 // P, N
-  double mean_force = 0.0;           // F over the second half of the slide, N
-  double force_sd = 0.0;             // N
-  std::vector<std::array<double, 4>> record;  // t (s), pulled distance (m), rope force (N), slider z (m)
+  double load = 0.0;        // P, N
+  double mean_force = 0.0;  // F over the second half of the slide, N
+  double force_sd = 0.0;    // N
+  std::vector<std::array<double, 4>>
+      record;  // t (s), pulled distance (m), rope force (N), slider z (m)
 };
 
 struct SlidingFrictionResult {
-  double friction_input = 0.0;       // mu_s of the slider-bead pair
-  double friction_apparent = 0.0;    // slope of F against P through the origin
+  double friction_input = 0.0;     // mu_s of the slider-bead pair
+  double friction_apparent = 0.0;  // slope of F against P through the origin
   double friction_apparent_se = 0.0;
   double r_squared = 0.0;
   int bead_count = 0;
-  double bed_height = 0.0;           // m, top of the bed
+  double bed_height = 0.0;  // m, top of the bed
   double time_step = 0.0;
   std::vector<LoadRun> runs;
 };
 
 class Progress;
 // The bed is deposited once and reused for every load.
-SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s, const PairTable& table,
-                                                double bead_density, Progress* progress = nullptr);
+SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
+                                                const PairTable& table, double bead_density,
+                                                Progress* progress = nullptr);
 
 // `grainlab run` entry for `[test] type = "sliding_friction"` (with optional inverse mode).
-void run_sliding_friction(const std::string& config_path, const toml::table& root, const RunOptions& options);
+void run_sliding_friction(const std::string& config_path, const toml::table& root,
+                          const RunOptions& options);
 
 }  // namespace grainlab

@@ -21,11 +21,13 @@ std::vector<double> read_loads(TableReader& t) {
   const toml::node* n = t.node("loads");
   if (!n) return SlidingFrictionSettings{}.loads;
   const toml::array* a = n->as_array();
-  if (!a || a->empty()) t.fail("loads", "expected a list of normal loads, e.g. [\"0.1 N\", \"0.2 N\"]");
+  if (!a || a->empty())
+    t.fail("loads", "expected a list of normal loads, e.g. [\"0.1 N\", \"0.2 N\"]");
   std::vector<double> loads;
   for (const toml::node& item : *a) {
     double v = 0.0;
-    if (auto x = item.value<double>()) v = *x;
+    if (auto x = item.value<double>())
+      v = *x;
     else if (auto s = item.value<std::string>()) {
       try {
         v = parse_quantity(*s, Quantity::force);
@@ -42,17 +44,24 @@ std::vector<double> read_loads(TableReader& t) {
 nlohmann::json result_json(const SlidingFrictionResult& r) {
   nlohmann::json runs = nlohmann::json::array();
   for (const LoadRun& run : r.runs)
-    runs.push_back({{"normal_load_N", run.load}, {"mean_sliding_force_N", run.mean_force},
-                    {"sliding_force_sd_N", run.force_sd}, {"ratio_F_over_P", run.mean_force / run.load}});
-  return {{"friction_input", r.friction_input}, {"friction_apparent", r.friction_apparent},
-          {"friction_apparent_standard_error", r.friction_apparent_se}, {"r_squared", r.r_squared},
-          {"bead_count", r.bead_count}, {"bed_height_m", r.bed_height}, {"time_step_s", r.time_step},
+    runs.push_back({{"normal_load_N", run.load},
+                    {"mean_sliding_force_N", run.mean_force},
+                    {"sliding_force_sd_N", run.force_sd},
+                    {"ratio_F_over_P", run.mean_force / run.load}});
+  return {{"friction_input", r.friction_input},
+          {"friction_apparent", r.friction_apparent},
+          {"friction_apparent_standard_error", r.friction_apparent_se},
+          {"r_squared", r.r_squared},
+          {"bead_count", r.bead_count},
+          {"bed_height_m", r.bed_height},
+          {"time_step_s", r.time_step},
           {"loads", runs}};
 }
 
 }  // namespace
 
-void run_sliding_friction(const std::string& path, const toml::table& root, const RunOptions& options) {
+void run_sliding_friction(const std::string& path, const toml::table& root,
+                          const RunOptions& options) {
   const SceneConfig c = read_lab_materials(path, root);
   TableReader t = test_table_reader(path, root);
   SlidingFrictionSettings s;
@@ -72,29 +81,39 @@ void run_sliding_friction(const std::string& path, const toml::table& root, cons
   s.dt_fraction = t.number_or("dt_fraction", Quantity::dimensionless, s.dt_fraction);
   s.gravity = t.number_or("gravity", Quantity::acceleration, s.gravity);
   s.seed = static_cast<unsigned long>(t.integer_or("seed", 1));
-  const std::optional<double> target = t.optional_number("target_friction", Quantity::dimensionless);
+  const std::optional<double> target =
+      t.optional_number("target_friction", Quantity::dimensionless);
   const double tolerance = t.number_or("target_tolerance", Quantity::dimensionless, 0.002);
   if (!(s.diameter > 0)) t.fail("diameter", "expected a bead diameter > 0 m");
   if (!(s.bed_length >= 8 * s.diameter && s.bed_width >= 4 * s.diameter))
     t.fail("bed_length", "the bed must be at least 8 bead diameters long and 4 wide");
   if (s.layers < 1 || s.layers > 20) t.fail("layers", "expected 1 to 20 layers");
   if (!(s.speed > 0)) t.fail("speed", "expected a pulling speed > 0 m/s");
-  if (!(s.slider_length >= 2 * s.diameter)) t.fail("slider_length", "expected at least two bead diameters");
-  if (!(s.slide_distance > 0 && s.slider_length + s.slide_distance + 2 * s.diameter <= s.bed_length))
-    t.fail("slide_distance", "expected a distance > 0 with slider_length + slide_distance + 2 diameters <= bed_length");
+  if (!(s.slider_length >= 2 * s.diameter))
+    t.fail("slider_length", "expected at least two bead diameters");
+  if (!(s.slide_distance > 0 &&
+        s.slider_length + s.slide_distance + 2 * s.diameter <= s.bed_length))
+    t.fail(
+        "slide_distance",
+        "expected a distance > 0 with slider_length + slide_distance + 2 diameters <= bed_length");
   if (!(s.spring_stiffness > 0)) t.fail("spring_stiffness", "expected a rope stiffness > 0 N/m");
   if (!(s.slider_mass > 0)) t.fail("slider_mass", "expected a slider mass > 0 kg");
-  if (!(s.dt_fraction > 0 && s.dt_fraction <= 0.3)) t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
-  if (target && !(*target > 0 && *target < 2)) t.fail("target_friction", "expected an apparent friction in (0, 2)");
+  if (!(s.dt_fraction > 0 && s.dt_fraction <= 0.3))
+    t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
+  if (target && !(*target > 0 && *target < 2))
+    t.fail("target_friction", "expected an apparent friction in (0, 2)");
   if (target && s.loads.size() < 2) t.fail("loads", "the inverse mode needs at least two loads");
   PairTable table = build_pair_table(c);
   const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
   if (bead < 0) t.fail("bead_material", fmt::format("unknown material \"{}\"", s.bead_material));
-  if (slider < 0) t.fail("slider_material", fmt::format("unknown material \"{}\"", s.slider_material));
+  if (slider < 0)
+    t.fail("slider_material", fmt::format("unknown material \"{}\"", s.slider_material));
   if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
-  if (!table(bead, bead).defined) t.fail("bead_material", "no [[pair]] for the bead material with itself");
+  if (!table(bead, bead).defined)
+    t.fail("bead_material", "no [[pair]] for the bead material with itself");
   if (!table(bead, slider).defined)
-    t.fail("slider_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.slider_material));
+    t.fail("slider_material",
+           fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.slider_material));
   t.finish();
 
   prepare_output_dir(options.out_dir, options.overwrite);
@@ -111,7 +130,8 @@ void run_sliding_friction(const std::string& path, const toml::table& root, cons
   std::string csv = "normal_load_N,t_s,pulled_m,rope_force_N,slider_z_m\n";
   for (const LoadRun& run : r.runs)
     for (const auto& row : run.record)
-      csv += fmt::format("{},{},{},{},{}\n", run.load, exact(row[0]), exact(row[1]), exact(row[2]), exact(row[3]));
+      csv += fmt::format("{},{},{},{},{}\n", run.load, exact(row[0]), exact(row[1]), exact(row[2]),
+                         exact(row[3]));
 
   if (target) {
     // Inverse mode: find the input mu_s whose apparent friction is the measured one. The
@@ -129,19 +149,25 @@ void run_sliding_friction(const std::string& path, const toml::table& root, cons
       PairTable trial = table;
       trial.set(bead, slider, p);
       const SlidingFrictionResult tr = simulate_sliding_friction(s, trial, density);
-      iterations.push_back({{"friction_input", mu}, {"friction_apparent", tr.friction_apparent}, {"r_squared", tr.r_squared}});
-      if (!options.quiet) fmt::print(stderr, "inverse: mu_s = {:.4f} -> apparent {:.4f}\n", mu, tr.friction_apparent);
+      iterations.push_back({{"friction_input", mu},
+                            {"friction_apparent", tr.friction_apparent},
+                            {"r_squared", tr.r_squared}});
+      if (!options.quiet)
+        fmt::print(stderr, "inverse: mu_s = {:.4f} -> apparent {:.4f}\n", mu, tr.friction_apparent);
       return tr.friction_apparent - *target;
     };
     double lo = 0.0, f_lo = -*target;  // mu_s = 0: no friction at all
     double hi = r.friction_input, f_hi = r.friction_apparent - *target;
-    iterations.push_back({{"friction_input", hi}, {"friction_apparent", r.friction_apparent}, {"r_squared", r.r_squared}});
+    iterations.push_back({{"friction_input", hi},
+                          {"friction_apparent", r.friction_apparent},
+                          {"r_squared", r.r_squared}});
     while (f_hi < 0 && hi < 1.5) {
       lo = hi, f_lo = f_hi;
       hi = std::min(1.5, 2.0 * hi + 0.05);
       f_hi = apparent_for(hi);
     }
-    double best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi, best_f = std::min(std::abs(f_lo), std::abs(f_hi));
+    double best = std::abs(f_lo) < std::abs(f_hi) ? lo : hi,
+           best_f = std::min(std::abs(f_lo), std::abs(f_hi));
     bool reached = f_hi >= 0;
     for (int it = 0; reached && it < 12 && best_f > tolerance; ++it) {
       double mid = lo - f_lo * (hi - lo) / (f_hi - f_lo);
@@ -151,23 +177,30 @@ void run_sliding_friction(const std::string& path, const toml::table& root, cons
       (f < 0 ? lo : hi) = mid;
       (f < 0 ? f_lo : f_hi) = f;
     }
-    j["inverse"] = {{"target_friction_apparent", *target}, {"tolerance", tolerance},
-                    {"reached", reached && best_f <= tolerance}, {"friction_input_found", best},
-                    {"apparent_error", best_f}, {"iterations", iterations}};
+    j["inverse"] = {{"target_friction_apparent", *target},
+                    {"tolerance", tolerance},
+                    {"reached", reached && best_f <= tolerance},
+                    {"friction_input_found", best},
+                    {"apparent_error", best_f},
+                    {"iterations", iterations}};
     if (!options.quiet)
-      fmt::print("inverse: input friction {:.4f} reproduces the apparent friction {:.4f} (within {:.4f}){}\n",
-                 best, *target, best_f, reached ? "" : " -- target not reachable below mu_s = 1.5");
+      fmt::print(
+          "inverse: input friction {:.4f} reproduces the apparent friction {:.4f} (within "
+          "{:.4f}){}\n",
+          best, *target, best_f, reached ? "" : " -- target not reachable below mu_s = 1.5");
   }
   write_file_atomically(options.out_dir + "/force_time.csv", csv);
   write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
   progress.finish(fmt::format("{} beads, {} loads", r.bead_count, r.runs.size()));
   if (!options.quiet) {
-    fmt::print("sliding friction {} on a {} bed: input mu_s = {:.4f}, apparent = {:.4f} +- {:.4f} (R^2 = {:.4f})\n",
-               s.slider_material, s.bead_material, r.friction_input, r.friction_apparent,
-               r.friction_apparent_se, r.r_squared);
+    fmt::print(
+        "sliding friction {} on a {} bed: input mu_s = {:.4f}, apparent = {:.4f} +- {:.4f} (R^2 = "
+        "{:.4f})\n",
+        s.slider_material, s.bead_material, r.friction_input, r.friction_apparent,
+        r.friction_apparent_se, r.r_squared);
     for (const LoadRun& run : r.runs)
-      fmt::print("  P = {:.4g} N   F = {:.4g} N (sd {:.2g})   F/P = {:.4f}\n", run.load, run.mean_force,
-                 run.force_sd, run.mean_force / run.load);
+      fmt::print("  P = {:.4g} N   F = {:.4g} N (sd {:.2g})   F/P = {:.4f}\n", run.load,
+                 run.mean_force, run.force_sd, run.mean_force / run.load);
   }
 }
 

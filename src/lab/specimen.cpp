@@ -65,8 +65,8 @@ Placement place_on_jittered_lattice(const SpecimenSettings& s) {
 // Contact constants while compacting: friction mu (< 0: the measured one) and restitution e
 // (< 0: the measured one). Only the packing's final static state is kept, which does not
 // depend on e, so compaction may dissipate faster than the beads do.
-void set_compaction_contacts(PairTable& table, const PairTable& original, const SpecimenSettings& s, double mu,
-                             double e) {
+void set_compaction_contacts(PairTable& table, const PairTable& original, const SpecimenSettings& s,
+                             double mu, double e) {
   for (int other : {s.bead_material, s.lateral_material, s.platen_material}) {
     const PairParams& q = original(s.bead_material, other);
     if (!q.defined) continue;
@@ -84,7 +84,8 @@ void set_compaction_contacts(PairTable& table, const PairTable& original, const 
 
 }  // namespace
 
-HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c, const std::function<bool(const HoldState&)>& on_check) {
+HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
+                         const std::function<bool(const HoldState&)>& on_check) {
   const double dt = sim.settings().time_step, t_end = sim.time() + c.max_time;
   std::array<StressServo, 6> servos;
   for (StressServo& servo : servos) servo = StressServo(ServoSettings{c.confining_stress});
@@ -103,10 +104,12 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c, const std::func
     state.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
     state.max_stress_error = 0.0;
     for (int k = 0; k < 6; ++k)
-      state.max_stress_error = std::max(state.max_stress_error, std::abs(wall_stress(sim.walls(), k) / c.confining_stress - 1.0));
+      state.max_stress_error = std::max(
+          state.max_stress_error, std::abs(wall_stress(sim.walls(), k) / c.confining_stress - 1.0));
     state.unbalanced = unbalanced_force_ratio(sim);
     const bool may_stop = on_check(state);
-    if (may_stop && state.max_stress_error < c.stress_tolerance && state.unbalanced < c.unbalanced_tolerance) {
+    if (may_stop && state.max_stress_error < c.stress_tolerance &&
+        state.unbalanced < c.unbalanced_tolerance) {
       state.reached = true;
       break;
     }
@@ -130,21 +133,27 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   const double r_min = 0.5 * (s.diameter - s.diameter_tolerance);
   const PairParams& glass = original(s.bead_material, s.bead_material);
   SimulationSettings settings;
-  settings.time_step = s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
+  settings.time_step =
+      s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
   settings.dt_fraction = s.dt_fraction;
   settings.skin = 0.1 * s.diameter;
   // Steering: compact frictionless until the target solid fraction is reached, then switch the
   // measured friction on so the packing locks in; without a target, the particles' own friction.
   out.compaction_friction = s.target_solid_fraction ? 0.0 : glass.friction;
   out.compaction_restitution = std::min(s.compaction_restitution, glass.restitution);
-  set_compaction_contacts(table, original, s, s.target_solid_fraction ? 0.0 : -1.0, s.compaction_restitution);
-  Simulation sim(std::move(particles), cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
+  set_compaction_contacts(table, original, s, s.target_solid_fraction ? 0.0 : -1.0,
+                          s.compaction_restitution);
+  Simulation sim(std::move(particles),
+                 cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);
   bool friction_restored = !s.target_solid_fraction;
   const HoldState held = hold_isotropic(
-      sim, HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance, s.unbalanced_tolerance, s.max_time},
+      sim,
+      HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
+                   s.unbalanced_tolerance, s.max_time},
       [&](const HoldState& state) {
-        const bool settled = state.max_stress_error < s.stress_tolerance && state.unbalanced < s.unbalanced_tolerance;
+        const bool settled = state.max_stress_error < s.stress_tolerance &&
+                             state.unbalanced < s.unbalanced_tolerance;
         if (!friction_restored && (state.solid_fraction >= *s.target_solid_fraction || settled)) {
           // Target reached, or the frictionless packing settled below it: it cannot get denser
           // at this stress, so the target is out of reach (reported).
@@ -154,9 +163,10 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
           friction_restored = true;
         }
         if (progress)
-          progress->update(std::min(1.0, sim.time() / s.max_time),
-                           fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}",
-                                       state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
+          progress->update(
+              std::min(1.0, sim.time() / s.max_time),
+              fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}",
+                          state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
         return friction_restored;
       });
   out.equilibrium_reached = held.reached;
@@ -175,13 +185,14 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
 }
 
 void save_specimen(const std::string& path, const Specimen& s) {
-  std::string text = fmt::format("# grainlab specimen: box low {} {} {} high {} {} {}\nid,material,radius,x,y,z\n",
-                                 exact(s.low.x), exact(s.low.y), exact(s.low.z), exact(s.high.x), exact(s.high.y),
-                                 exact(s.high.z));
+  std::string text =
+      fmt::format("# grainlab specimen: box low {} {} {} high {} {} {}\nid,material,radius,x,y,z\n",
+                  exact(s.low.x), exact(s.low.y), exact(s.low.z), exact(s.high.x), exact(s.high.y),
+                  exact(s.high.z));
   const ParticleStore& p = s.particles;
   for (size_t i = 0; i < p.size(); ++i)
-    text += fmt::format("{},{},{},{},{},{}\n", p.id[i], p.material[i], exact(p.radius[i]), exact(p.position[i].x),
-                        exact(p.position[i].y), exact(p.position[i].z));
+    text += fmt::format("{},{},{},{},{},{}\n", p.id[i], p.material[i], exact(p.radius[i]),
+                        exact(p.position[i].x), exact(p.position[i].y), exact(p.position[i].z));
   write_file_atomically(path, text);
 }
 
@@ -192,9 +203,10 @@ Specimen load_specimen(const std::string& path, double density) {
   std::string line;
   int number = 1;
   if (!std::getline(in, line) ||
-      std::sscanf(line.c_str(), "# grainlab specimen: box low %lf %lf %lf high %lf %lf %lf", &s.low.x, &s.low.y,
-                  &s.low.z, &s.high.x, &s.high.y, &s.high.z) != 6)
-    throw ConfigError(fmt::format("{} line 1: expected '# grainlab specimen: box low X Y Z high X Y Z'", path));
+      std::sscanf(line.c_str(), "# grainlab specimen: box low %lf %lf %lf high %lf %lf %lf",
+                  &s.low.x, &s.low.y, &s.low.z, &s.high.x, &s.high.y, &s.high.z) != 6)
+    throw ConfigError(
+        fmt::format("{} line 1: expected '# grainlab specimen: box low X Y Z high X Y Z'", path));
   std::getline(in, line);
   ++number;
   if (line != "id,material,radius,x,y,z")
@@ -205,14 +217,16 @@ Specimen load_specimen(const std::string& path, double density) {
     unsigned id;
     int material;
     double r, x, y, z;
-    if (std::sscanf(line.c_str(), "%u,%d,%lf,%lf,%lf,%lf", &id, &material, &r, &x, &y, &z) != 6 || !(r > 0) ||
-        id != s.particles.size())
-      throw ConfigError(fmt::format("{} line {}: expected id,material,radius,x,y,z with ids 0, 1, 2, ... and radius > 0",
-                                    path, number));
+    if (std::sscanf(line.c_str(), "%u,%d,%lf,%lf,%lf,%lf", &id, &material, &r, &x, &y, &z) != 6 ||
+        !(r > 0) || id != s.particles.size())
+      throw ConfigError(fmt::format(
+          "{} line {}: expected id,material,radius,x,y,z with ids 0, 1, 2, ... and radius > 0",
+          path, number));
     s.particles.add(id, material, r, density, {x, y, z}, {}, {}, false);
   }
   if (s.particles.size() == 0) throw ConfigError(fmt::format("{}: no particles", path));
-  s.solid_fraction = solid_fraction(s.particles, (s.high.x - s.low.x) * (s.high.y - s.low.y) * (s.high.z - s.low.z));
+  s.solid_fraction = solid_fraction(
+      s.particles, (s.high.x - s.low.x) * (s.high.y - s.low.y) * (s.high.z - s.low.z));
   return s;
 }
 

@@ -24,35 +24,35 @@ class Progress;
 
 struct SpecimenSettings {
   long count = 11636;
-  double diameter = 2e-3;             // m, mean
-  double diameter_tolerance = 0.02e-3;  // m: diameters uniform in [d - tol, d + tol]
-  Vec3 nominal_box{0.035, 0.035, 0.08};  // m: sets the aspect ratio
-  double confining_stress = 150e3;    // Pa
+  double diameter = 2e-3;                       // m, mean
+  double diameter_tolerance = 0.02e-3;          // m: diameters uniform in [d - tol, d + tol]
+  Vec3 nominal_box{0.035, 0.035, 0.08};         // m: sets the aspect ratio
+  double confining_stress = 150e3;              // Pa
   std::optional<double> target_solid_fraction;  // steer the compaction friction to hit it
   int bead_material = 0, lateral_material = 0, platen_material = 0;
-  double density = 2500.0;            // kg/m^3
+  double density = 2500.0;  // kg/m^3
   double dt_fraction = 0.1;
-  double max_strain_rate = 10.0;      // 1/s, wall speed cap during compaction
+  double max_strain_rate = 10.0;        // 1/s, wall speed cap during compaction
   double compaction_restitution = 0.3;  // e of every bead contact while compacting (faster rest)
-  double stress_tolerance = 0.005;    // equilibrium: wall stresses within 0.5 % of the target
-  double unbalanced_tolerance = 1e-4; // and mean unbalanced / mean contact force below this
-  double max_time = 0.5;              // s simulated at most
+  double stress_tolerance = 0.005;      // equilibrium: wall stresses within 0.5 % of the target
+  double unbalanced_tolerance = 1e-4;   // and mean unbalanced / mean contact force below this
+  double max_time = 0.5;                // s simulated at most
   uint64_t seed = 1;
 };
 
 struct Specimen {
   ParticleStore particles;
-  Vec3 low, high;                     // box (wall positions), m
+  Vec3 low, high;  // box (wall positions), m
   double solid_fraction = 0.0;
   double coordination_number = 0.0;
   double unbalanced_force_ratio = 0.0;
-  double max_stress_error = 0.0;      // relative, over the six walls
-  double compaction_friction = 0.0;   // friction used while compacting
+  double max_stress_error = 0.0;     // relative, over the six walls
+  double compaction_friction = 0.0;  // friction used while compacting
   double compaction_restitution = 0.0;
   bool equilibrium_reached = false;
-  bool target_reached = true;         // false: the target solid fraction was out of reach
-  double simulated_time = 0.0;        // s
-  Vec3 inserted_box;                  // m, the box the beads were placed in
+  bool target_reached = true;   // false: the target solid fraction was out of reach
+  double simulated_time = 0.0;  // s
+  Vec3 inserted_box;            // m, the box the beads were placed in
   double inserted_solid_fraction = 0.0;
 };
 
@@ -62,11 +62,11 @@ struct Specimen {
 // every 200 steps and returns whether the run may stop there (e.g. false while the compaction
 // friction is still being steered).
 struct HoldCriteria {
-  double confining_stress;       // Pa
-  double max_strain_rate;        // 1/s, wall speed cap
-  double stress_tolerance;       // relative
+  double confining_stress;  // Pa
+  double max_strain_rate;   // 1/s, wall speed cap
+  double stress_tolerance;  // relative
   double unbalanced_tolerance;
-  double max_time;               // s
+  double max_time;  // s
 };
 struct HoldState {
   double solid_fraction = 0.0, max_stress_error = 0.0, unbalanced = 1.0;

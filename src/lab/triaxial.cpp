@@ -7,8 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "contact/time_step.hpp"
 #include "control/stress_servo.hpp"
@@ -19,8 +19,8 @@
 #include "io/progress.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/cuboid_box.hpp"
-#include "lab/triaxial_config.hpp"
 #include "lab/interrupt.hpp"
+#include "lab/triaxial_config.hpp"
 #include "lab/triaxial_plot.hpp"
 #include "lab/triaxial_shear.hpp"
 #include "measure/specimen_state.hpp"
@@ -72,10 +72,12 @@ void run_prepare(const std::string& path, const RunOptions& options) {
   j["grainlab_version"] = version_string;
   j["config_file"] = path;
   j["confining_stress_Pa"] = c.settings.specimen.confining_stress;
-  j["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  j["wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(options.out_dir + "/specimen.json", j.dump(2) + "\n");
-  progress.finish(fmt::format("solid fraction {:.4f}, box {:.2f} x {:.2f} x {:.2f} mm", s.solid_fraction,
-                              1e3 * (s.high.x - s.low.x), 1e3 * (s.high.y - s.low.y), 1e3 * (s.high.z - s.low.z)));
+  progress.finish(fmt::format("solid fraction {:.4f}, box {:.2f} x {:.2f} x {:.2f} mm",
+                              s.solid_fraction, 1e3 * (s.high.x - s.low.x),
+                              1e3 * (s.high.y - s.low.y), 1e3 * (s.high.z - s.low.z)));
 }
 
 namespace {
@@ -83,10 +85,12 @@ namespace {
 void finish_triaxial(const ShearRun& run, const std::string& dir, bool quiet) {
   const ShearProgress& p = run.progress;
   const double sigma3 = p.confining_stress;
-  const double phi_peak = std::asin(p.peak_deviator / (p.peak_deviator + 2.0 * sigma3)) * 180.0 / M_PI;
+  const double phi_peak =
+      std::asin(p.peak_deviator / (p.peak_deviator + 2.0 * sigma3)) * 180.0 / M_PI;
   nlohmann::json j = nlohmann::json::parse(run.run_info);
   j["max_inertial_number"] = p.max_inertial;
-  j["quasi_static_flag"] = p.max_inertial > 1e-3 ? "I exceeded 1e-3: not quasi-static" : "ok (I <= 1e-3)";
+  j["quasi_static_flag"] =
+      p.max_inertial > 1e-3 ? "I exceeded 1e-3: not quasi-static" : "ok (I <= 1e-3)";
   j["peak_axial_stress_Pa"] = p.peak_axial;
   j["axial_strain_at_peak"] = p.peak_strain;
   j["peak_deviator_stress_Pa"] = p.peak_deviator;
@@ -101,18 +105,24 @@ void finish_triaxial(const ShearRun& run, const std::string& dir, bool quiet) {
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
   j["shearing_wall_time_s"] = p.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + p.wall_time_before;
-  j["reference"] = {{"laboratory_peak_axial_stress_Pa", lab_peak_axial_stress},
-                    {"laboratory_axial_strain_at_peak", lab_axial_strain_at_peak},
-                    {"published_dem_peak_axial_stress_Pa", published_dem_peak_axial_stress},
-                    {"difference_to_laboratory", p.peak_axial / lab_peak_axial_stress - 1.0},
-                    {"difference_to_published_dem", p.peak_axial / published_dem_peak_axial_stress - 1.0}};
+  j["reference"] = {
+      {"laboratory_peak_axial_stress_Pa", lab_peak_axial_stress},
+      {"laboratory_axial_strain_at_peak", lab_axial_strain_at_peak},
+      {"published_dem_peak_axial_stress_Pa", published_dem_peak_axial_stress},
+      {"difference_to_laboratory", p.peak_axial / lab_peak_axial_stress - 1.0},
+      {"difference_to_published_dem", p.peak_axial / published_dem_peak_axial_stress - 1.0}};
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot_triaxial_curve(dir);
   if (!quiet)
-    fmt::print("triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 342.4 kPa at 5.11 % ({:+.1f} %), "
-               "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} %; wall time {:.0f} s\n",
-               1e-3 * p.peak_axial, 100 * p.peak_strain, 100 * (p.peak_axial / lab_peak_axial_stress - 1.0),
-               100 * (p.peak_axial / published_dem_peak_axial_stress - 1.0), 100 * rms, j["wall_time_s"].get<double>());
+    fmt::print(
+        "triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 342.4 kPa at "
+        "5.11 % ({:+.1f} %), "
+        "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} %; wall time {:.0f} "
+        "s\n",
+        1e-3 * p.peak_axial, 100 * p.peak_strain,
+        100 * (p.peak_axial / lab_peak_axial_stress - 1.0),
+        100 * (p.peak_axial / published_dem_peak_axial_stress - 1.0), 100 * rms,
+        j["wall_time_s"].get<double>());
 }
 
 std::string read_text(const std::string& path) {
@@ -129,8 +139,9 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   const TriaxialSettings& s = c.settings;
   const SpecimenSettings& sp = s.specimen;
   if (s.specimen_file && !std::filesystem::exists(*s.specimen_file))
-    throw ConfigError(fmt::format("{}: test.specimen: {} does not exist (make one with grainlab prepare)", path,
-                                  *s.specimen_file));
+    throw ConfigError(
+        fmt::format("{}: test.specimen: {} does not exist (make one with grainlab prepare)", path,
+                    *s.specimen_file));
   prepare_output_dir(options.out_dir, options.overwrite);
   install_interrupt_handler();
   const auto wall_start = std::chrono::steady_clock::now();
@@ -143,31 +154,42 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   double r_min = 1e300;
   for (double r : specimen.particles.radius) r_min = std::min(r_min, r);
   SimulationSettings settings;
-  settings.time_step = sp.dt_fraction * collision_duration(r_min, sp.density, glass.youngs_modulus, glass.restitution);
+  settings.time_step = sp.dt_fraction * collision_duration(r_min, sp.density, glass.youngs_modulus,
+                                                           glass.restitution);
   settings.dt_fraction = sp.dt_fraction;
   settings.skin = 0.1 * sp.diameter;
-  ShearRun run{Simulation(specimen.particles,
-                          cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material), c.table,
-                          settings),
-               {}, {}, {}, {}, path, read_text(path)};
+  ShearRun run{
+      Simulation(specimen.particles,
+                 cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material),
+                 c.table, settings),
+      {},
+      {},
+      {},
+      {},
+      path,
+      read_text(path)};
   Simulation& sim = run.sim;
   // A specimen is stored without contact history (tangential springs), so it is first brought
   // back to equilibrium under the confining stress before the platens move.
   const HoldState held = hold_isotropic(
       sim, HoldCriteria{sp.confining_stress, sp.max_strain_rate, sp.stress_tolerance, 1e-3, 0.02},
       [&](const HoldState& state) {
-        if (interrupt_requested()) throw Interrupted("interrupted before shearing began: nothing to resume");
-        progress.update(0.0, fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
-                                         100 * state.max_stress_error, state.unbalanced));
+        if (interrupt_requested())
+          throw Interrupted("interrupted before shearing began: nothing to resume");
+        progress.update(
+            0.0, fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
+                             100 * state.max_stress_error, state.unbalanced));
         return true;
       });
-  const double prep_wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double prep_wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   ShearProgress& p = run.progress;
   p.size0 = box_high(sim.walls()) - box_low(sim.walls());
   const double height0 = p.size0.z;
   // Platen speed: given, or the fastest whose inertial number at the confining stress is the bound
   // (the mean stress only grows while shearing, so I stays below it).
-  const double rate_bound = s.max_inertial_number / (sp.diameter * std::sqrt(sp.density / sp.confining_stress));
+  const double rate_bound =
+      s.max_inertial_number / (sp.diameter * std::sqrt(sp.density / sp.confining_stress));
   p.platen_speed = s.platen_speed ? *s.platen_speed : 0.5 * rate_bound * height0;
   p.strain_rate = 2.0 * p.platen_speed / height0;
   p.confining_stress = sp.confining_stress;
@@ -176,14 +198,17 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   p.output_strain_interval = s.output_strain_interval;
   p.vtk_strain_interval = s.vtk ? s.vtk_strain_interval : 0.0;
   const double dt = settings.time_step;
-  p.total_steps = static_cast<long>(std::ceil(s.max_axial_strain * height0 / (2.0 * p.platen_speed) / dt));
+  p.total_steps =
+      static_cast<long>(std::ceil(s.max_axial_strain * height0 / (2.0 * p.platen_speed) / dt));
   if (!options.quiet)
     fmt::print(stderr,
-               "triaxial: {} particles, box {:.2f} x {:.2f} x {:.2f} mm, solid fraction {:.4f}; platens at {:.4g} m/s "
+               "triaxial: {} particles, box {:.2f} x {:.2f} x {:.2f} mm, solid fraction {:.4f}; "
+               "platens at {:.4g} m/s "
                "each (strain rate {:.3g} 1/s, {}), dt = {:.3g} s, {} steps\n",
                specimen.particles.size(), 1e3 * p.size0.x, 1e3 * p.size0.y, 1e3 * p.size0.z,
-               solid_fraction(sim.particles(), p.size0.x * p.size0.y * p.size0.z), p.platen_speed, p.strain_rate,
-               s.platen_speed ? "given" : "from the inertial-number bound", dt, p.total_steps);
+               solid_fraction(sim.particles(), p.size0.x * p.size0.y * p.size0.z), p.platen_speed,
+               p.strain_rate, s.platen_speed ? "given" : "from the inertial-number bound", dt,
+               p.total_steps);
 
   nlohmann::json j;
   j["grainlab_version"] = version_string;
@@ -192,16 +217,19 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   inputs << toml::json_formatter{root};
   j["inputs"] = nlohmann::json::parse(inputs.str());
   j["specimen"] = specimen_json(specimen);
-  j["specimen"]["source"] = s.specimen_file ? *s.specimen_file : std::string("prepared in this run");
+  j["specimen"]["source"] =
+      s.specimen_file ? *s.specimen_file : std::string("prepared in this run");
   j["time_step_s"] = dt;
   j["dt_fraction"] = sp.dt_fraction;
   j["collision_duration_s"] = dt / sp.dt_fraction;
   j["loading"] = {{"platen_speed_m_per_s", p.platen_speed},
                   {"strain_rate_per_s", p.strain_rate},
-                  {"rule", s.platen_speed ? "platen speed given (paper: 0.01 m/s)" : "fastest rate with I <= max_inertial_number"},
+                  {"rule", s.platen_speed ? "platen speed given (paper: 0.01 m/s)"
+                                          : "fastest rate with I <= max_inertial_number"},
                   {"max_inertial_number_bound", s.max_inertial_number}};
   j["initial_solid_fraction"] = solid_fraction(sim.particles(), p.size0.x * p.size0.y * p.size0.z);
-  j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced}, {"max_wall_stress_error", held.max_stress_error},
+  j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced},
+                           {"max_wall_stress_error", held.max_stress_error},
                            {"reached", held.reached}};
   j["preparation_wall_time_s"] = prep_wall_time;
   run.run_info = j.dump();
@@ -218,13 +246,15 @@ void resume_triaxial(const RunOptions& options) {
   try {
     root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", checkpoint, e.description()));
+    throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", checkpoint,
+                                  e.description()));
   }
   const TriaxialConfig c = read_triaxial_config(path, root);
   install_interrupt_handler();
   ShearRun run = load_checkpoint(checkpoint, c.table);
   if (!options.quiet)
-    fmt::print(stderr, "triaxial: resuming {} at step {} of {}\n", path, run.progress.step, run.progress.total_steps);
+    fmt::print(stderr, "triaxial: resuming {} at step {} of {}\n", path, run.progress.step,
+               run.progress.total_steps);
   Progress progress("grainlab triaxial", options.quiet);
   shear(run, options.out_dir, c.settings.checkpoint_interval, progress);
   progress.finish(fmt::format("{} steps", run.sim.step_count()));

@@ -26,7 +26,8 @@ struct TriaxialSettings {
   double checkpoint_interval = 300.0;  // s of wall time between checkpoints
 };
 
-void run_triaxial(const std::string& config_path, const toml::table& root, const RunOptions& options);
+void run_triaxial(const std::string& config_path, const toml::table& root,
+                  const RunOptions& options);
 
 // `grainlab run --resume DIR`: continues an interrupted triaxial run from DIR/checkpoint.bin and
 // produces the same files as an uninterrupted run.

@@ -30,10 +30,12 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   p.density = *bead.density;
   for (int other : {p.bead_material, p.lateral_material, p.platen_material})
     if (!c.table(p.bead_material, other).defined)
-      t.fail("bead_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", bead.name, c.scene.materials[other].name));
+      t.fail("bead_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", bead.name,
+                                          c.scene.materials[other].name));
   p.count = t.integer_or("count", p.count);
   if (p.count < 8) t.fail("count", "expected at least 8 particles");
-  if (p.count > 20'000'000) t.fail("count", "more particles than grainlab places in one specimen (20 million)");
+  if (p.count > 20'000'000)
+    t.fail("count", "more particles than grainlab places in one specimen (20 million)");
   p.diameter = t.number_or("diameter", Quantity::length, p.diameter);
   p.diameter_tolerance = t.number_or("diameter_tolerance", Quantity::length, p.diameter_tolerance);
   if (!(p.diameter > 0)) t.fail("diameter", "expected a diameter > 0 m");
@@ -50,19 +52,26 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   const double bead_volume = p.count * (M_PI / 6.0) * p.diameter * p.diameter * p.diameter;
   const double needed = bead_volume / (p.nominal_box.x * p.nominal_box.y * p.nominal_box.z);
   if (needed > 0.64)
-    t.fail("count", fmt::format("more particles than fit in the box: they would fill {:.2f} of it, above random "
-                                "close packing (0.64)", needed));
+    t.fail("count",
+           fmt::format(
+               "more particles than fit in the box: they would fill {:.2f} of it, above random "
+               "close packing (0.64)",
+               needed));
   p.confining_stress = t.number_or("confining_stress", Quantity::pressure, p.confining_stress);
   if (!(p.confining_stress > 0)) t.fail("confining_stress", "expected a confining stress > 0 Pa");
   if (auto phi = t.optional_number("target_solid_fraction", Quantity::dimensionless)) {
-    if (!(*phi > 0.45 && *phi < 0.66)) t.fail("target_solid_fraction", "expected a solid fraction in (0.45, 0.66)");
+    if (!(*phi > 0.45 && *phi < 0.66))
+      t.fail("target_solid_fraction", "expected a solid fraction in (0.45, 0.66)");
     p.target_solid_fraction = *phi;
   }
   p.dt_fraction = t.number_or("dt_fraction", Quantity::dimensionless, p.dt_fraction);
-  if (!(p.dt_fraction > 0 && p.dt_fraction <= 0.3)) t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
-  p.max_strain_rate = t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
+  if (!(p.dt_fraction > 0 && p.dt_fraction <= 0.3))
+    t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
+  p.max_strain_rate =
+      t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
   p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
-  p.compaction_restitution = t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
+  p.compaction_restitution =
+      t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
   if (!(p.compaction_restitution > 0 && p.compaction_restitution <= 1))
     t.fail("compaction_restitution", "expected a restitution coefficient in (0, 1]");
   p.seed = static_cast<uint64_t>(t.integer_or("seed", 1));
@@ -74,19 +83,28 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
     s.platen_speed = t.number("platen_speed", Quantity::velocity);
     if (!(*s.platen_speed > 0)) t.fail("platen_speed", "expected a platen speed > 0 m/s");
   } else if (loading != "inertial") {
-    t.fail("loading", "expected \"inertial\" (fastest rate with I below max_inertial_number), \"paper\" (0.01 m/s) or \"speed\"");
+    t.fail("loading",
+           "expected \"inertial\" (fastest rate with I below max_inertial_number), \"paper\" (0.01 "
+           "m/s) or \"speed\"");
   }
-  s.max_inertial_number = t.number_or("max_inertial_number", Quantity::dimensionless, s.max_inertial_number);
+  s.max_inertial_number =
+      t.number_or("max_inertial_number", Quantity::dimensionless, s.max_inertial_number);
   if (!(s.max_inertial_number > 0)) t.fail("max_inertial_number", "expected a bound > 0");
   s.max_axial_strain = t.number_or("max_axial_strain", Quantity::dimensionless, s.max_axial_strain);
-  if (!(s.max_axial_strain > 0 && s.max_axial_strain < 0.5)) t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
-  s.output_strain_interval = t.number_or("output_strain_interval", Quantity::dimensionless, s.output_strain_interval);
-  if (!(s.output_strain_interval > 0)) t.fail("output_strain_interval", "expected a strain interval > 0");
+  if (!(s.max_axial_strain > 0 && s.max_axial_strain < 0.5))
+    t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
+  s.output_strain_interval =
+      t.number_or("output_strain_interval", Quantity::dimensionless, s.output_strain_interval);
+  if (!(s.output_strain_interval > 0))
+    t.fail("output_strain_interval", "expected a strain interval > 0");
   s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
-  if (!(s.checkpoint_interval > 0)) t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
+  if (!(s.checkpoint_interval > 0))
+    t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
   s.vtk = t.boolean_or("vtk", false);
-  s.vtk_strain_interval = t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
-  if (!(s.vtk_strain_interval > 0)) t.fail("vtk_strain_interval", "expected an axial-strain interval > 0");
+  s.vtk_strain_interval =
+      t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
+  if (!(s.vtk_strain_interval > 0))
+    t.fail("vtk_strain_interval", "expected an axial-strain interval > 0");
   t.finish();
   return c;
 }

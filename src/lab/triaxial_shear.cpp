@@ -50,16 +50,18 @@ void record(ShearRun& run) {
   std::array<double, 6> w;
   for (int k = 0; k < 6; ++k) w[k] = p.wall_stress_sum[k] / p.wall_samples;
   std::array<double, 3> particle;
-  for (int a = 0; a < 3; ++a) particle[a] = p.particle_stress_sum[a] / std::max(1L, p.particle_samples);
+  for (int a = 0; a < 3; ++a)
+    particle[a] = p.particle_stress_sum[a] / std::max(1L, p.particle_samples);
   const double sa = 0.5 * (w[bottom] + w[top]);
   const double sx = 0.5 * (w[x_low] + w[x_high]);
   const double sy = 0.5 * (w[y_low] + w[y_high]);
   const double deviator = sa - 0.5 * (sx + sy), mean = (sa + sx + sy) / 3.0;
   const double inertial = inertial_number(p.strain_rate, p.diameter, p.density, mean);
   run.curve_rows += fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()), exact(axial_strain),
-      exact((p.size0.x - size.x) / p.size0.x), exact((p.size0.y - size.y) / p.size0.y), exact(1.0 - volume / volume0),
-      exact(sa), exact(sx), exact(sy), exact(particle[2]), exact(particle[0]), exact(particle[1]), exact(deviator),
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()),
+      exact(axial_strain), exact((p.size0.x - size.x) / p.size0.x),
+      exact((p.size0.y - size.y) / p.size0.y), exact(1.0 - volume / volume0), exact(sa), exact(sx),
+      exact(sy), exact(particle[2]), exact(particle[0]), exact(particle[1]), exact(deviator),
       exact(mean), exact(deviator / mean), exact(solid_fraction(sim.particles(), volume)),
       exact(coordination_number(sim)), exact(inertial), exact(unbalanced_force_ratio(sim)));
   if (p.step > 0) {
@@ -69,7 +71,8 @@ void record(ShearRun& run) {
       p.lateral_error2 += e * e;
       ++p.lateral_samples;
     }
-    if (axial_strain > 0.005) p.worst_agreement = std::max(p.worst_agreement, std::abs(particle[2] - sa) / sa);
+    if (axial_strain > 0.005)
+      p.worst_agreement = std::max(p.worst_agreement, std::abs(particle[2] - sa) / sa);
   }
   if (sa > p.peak_axial) p.peak_axial = sa, p.peak_strain = axial_strain;
   p.peak_deviator = std::max(p.peak_deviator, deviator);
@@ -92,19 +95,25 @@ void snapshot(ShearRun& run, const std::string& dir) {
   write_file_atomically(dir + "/" + name, particles_vtu(sim.particles(), &contacts));
   const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", run.progress.step);
   write_file_atomically(dir + "/" + walls, walls_vtu(sim.walls(), 2.0 * run.progress.size0.z));
-  run.vtk_index += fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", sim.time(), name);
-  run.vtk_index += fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"1\" file=\"{}\"/>\n", sim.time(), walls);
-  write_file_atomically(dir + "/particles.pvd", "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
-                                                     run.vtk_index + "  </Collection>\n</VTKFile>\n");
+  run.vtk_index +=
+      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", sim.time(), name);
+  run.vtk_index +=
+      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"1\" file=\"{}\"/>\n", sim.time(), walls);
+  write_file_atomically(
+      dir + "/particles.pvd",
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
+          run.vtk_index + "  </Collection>\n</VTKFile>\n");
 }
 
 void write_curve(const ShearRun& run, const std::string& dir) {
-  write_file_atomically(dir + "/curve.csv.partial", std::string(curve_header) + "\n" + run.curve_rows);
+  write_file_atomically(dir + "/curve.csv.partial",
+                        std::string(curve_header) + "\n" + run.curve_rows);
 }
 
 }  // namespace
 
-void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, Progress& progress) {
+void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s,
+           Progress& progress) {
   Simulation& sim = run.sim;
   ShearProgress& p = run.progress;
   std::array<StressServo, 4> servos;
@@ -118,7 +127,8 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
   auto checkpoint = [&] {
     for (int k = 0; k < 4; ++k) p.servo_integral[k] = servos[k].integral();
     const double before = p.wall_time_before;
-    p.wall_time_before += std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+    p.wall_time_before +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
     write_curve(run, dir);
     save_checkpoint(run, dir + "/checkpoint.bin");
     p.wall_time_before = before;
@@ -127,12 +137,13 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
   for (;; ++p.step) {
     const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
     const double axial_strain = (p.size0.z - size.z) / p.size0.z;
-    if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 || p.step == p.total_steps) {
+    if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 ||
+        p.step == p.total_steps) {
       ++p.next_output;
       record(run);
       progress.update(static_cast<double>(p.step) / p.total_steps,
-                      fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa", 100 * axial_strain,
-                                  1e-3 * p.last_axial));
+                      fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
+                                  100 * axial_strain, 1e-3 * p.last_axial));
     }
     if (p.vtk_strain_interval > 0 &&
         (axial_strain >= p.next_vtk * p.vtk_strain_interval - 1e-12 || p.step == p.total_steps)) {
@@ -142,12 +153,14 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
     if (p.step == p.total_steps) break;
     if (interrupt_requested()) {
       checkpoint();
-      throw Interrupted(fmt::format("interrupted at axial strain {:.2f} %; checkpoint written, continue with: "
-                                    "grainlab run --resume {}",
-                                    100 * axial_strain, dir));
+      throw Interrupted(
+          fmt::format("interrupted at axial strain {:.2f} %; checkpoint written, continue with: "
+                      "grainlab run --resume {}",
+                      100 * axial_strain, dir));
     }
     if (p.step % 1000 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() > checkpoint_interval_s)
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >
+            checkpoint_interval_s)
       checkpoint();
     for (int k = 0; k < 4; ++k)
       set_inward_speed(sim.walls(), k,
@@ -158,7 +171,8 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, 
     sim.step();
     accumulate(run);
   }
-  p.wall_time_before += std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+  p.wall_time_before +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
   write_curve(run, dir);
   std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
   std::error_code ec;
@@ -188,10 +202,12 @@ std::string read_all(const std::string& path) {
 }
 }  // namespace
 
-void peek_checkpoint_config(const std::string& path, std::string& config_path, std::string& config_text) {
+void peek_checkpoint_config(const std::string& path, std::string& config_path,
+                            std::string& config_text) {
   StateReader in(read_all(path));
   try {
-    if (in.value<uint64_t>() != checkpoint_magic) throw std::runtime_error("not a grainlab triaxial checkpoint");
+    if (in.value<uint64_t>() != checkpoint_magic)
+      throw std::runtime_error("not a grainlab triaxial checkpoint");
     config_path = in.text();
     config_text = in.text();
   } catch (const std::runtime_error& e) {
@@ -202,13 +218,15 @@ void peek_checkpoint_config(const std::string& path, std::string& config_path, s
 ShearRun load_checkpoint(const std::string& path, PairTable table) {
   StateReader in(read_all(path));
   try {
-    if (in.value<uint64_t>() != checkpoint_magic) throw std::runtime_error("not a grainlab triaxial checkpoint");
+    if (in.value<uint64_t>() != checkpoint_magic)
+      throw std::runtime_error("not a grainlab triaxial checkpoint");
     std::string config_path = in.text(), config_text = in.text();
     const ShearProgress progress = in.value<ShearProgress>();
     std::string rows = in.text(), info = in.text(), vtk = in.text();
     Simulation sim(in, std::move(table));
     if (!in.at_end()) throw std::runtime_error("trailing data");
-    return ShearRun{std::move(sim), progress, std::move(rows), std::move(info), std::move(vtk), std::move(config_path),
+    return ShearRun{std::move(sim),        progress,       std::move(rows),
+                    std::move(info),       std::move(vtk), std::move(config_path),
                     std::move(config_text)};
   } catch (const std::runtime_error& e) {
     throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));

@@ -19,7 +19,7 @@ struct ShearProgress {  // plain values, saved as they are
   Vec3 size0;
   double peak_axial = 0, peak_strain = 0, peak_deviator = 0, peak_ratio = 0, max_inertial = 0;
   double lateral_error2 = 0, worst_agreement = 0, last_axial = 0, last_strain = 0;
-  double wall_time_before = 0;  // s spent in earlier sessions of this run
+  double wall_time_before = 0;     // s spent in earlier sessions of this run
   double vtk_strain_interval = 0;  // 0: no snapshots
   long next_vtk = 0;
   std::array<double, 4> servo_integral{};
@@ -36,9 +36,9 @@ inline constexpr long stress_sample_steps = 50;
 struct ShearRun {
   Simulation sim;
   ShearProgress progress;
-  std::string curve_rows;     // curve.csv rows written so far (without header)
-  std::string run_info;       // JSON text of what the summary needs from before the shearing
-  std::string vtk_index;      // <DataSet> lines of particles.pvd so far
+  std::string curve_rows;  // curve.csv rows written so far (without header)
+  std::string run_info;    // JSON text of what the summary needs from before the shearing
+  std::string vtk_index;   // <DataSet> lines of particles.pvd so far
   std::string config_path, config_text;
 };
 
@@ -57,6 +57,7 @@ void save_checkpoint(const ShearRun& run, const std::string& path);
 // Throws ConfigError for a missing or damaged checkpoint.
 ShearRun load_checkpoint(const std::string& path, PairTable table);
 // The config stored in a checkpoint (to rebuild the pair table before load_checkpoint).
-void peek_checkpoint_config(const std::string& path, std::string& config_path, std::string& config_text);
+void peek_checkpoint_config(const std::string& path, std::string& config_path,
+                            std::string& config_text);
 
 }  // namespace grainlab

@@ -54,7 +54,8 @@ std::vector<int> contacts_per_particle(const Simulation& sim) {
   for (size_t i = 0; i < p.size(); ++i) {
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e)
       if (c.normal_force[e] > 0.0) ++count[i], ++count[c.partner[e]];
-    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) count[i] += wc.normal_force[e] > 0.0;
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
+      count[i] += wc.normal_force[e] > 0.0;
   }
   return count;
 }

@@ -3,7 +3,8 @@
 // Compressive stress is positive.
 //
 // Love-Weber average stress over the specimen volume V (symmetrised):
-//   sigma_ij = -(1/V) [ sum over particle pairs f_i l_j + sum over wall contacts f_i (x_c - x_p)_j ]
+//   sigma_ij = -(1/V) [ sum over particle pairs f_i l_j + sum over wall contacts f_i (x_c - x_p)_j
+//   ]
 // with f the force on the second body / on the wall, l the branch vector from the first centre to
 // the second. In static equilibrium it equals the boundary (wall) stress; the agreement is a
 // check of equilibrium and of the volume.
@@ -33,7 +34,8 @@ std::vector<int> contacts_per_particle(const Simulation& sim);
 double unbalanced_force_ratio(const Simulation& sim);
 
 // I = strain_rate * d * sqrt(rho / p).
-inline double inertial_number(double strain_rate, double diameter, double density, double pressure) {
+inline double inertial_number(double strain_rate, double diameter, double density,
+                              double pressure) {
   return pressure > 0.0 ? std::abs(strain_rate) * diameter * std::sqrt(density / pressure) : 0.0;
 }
 

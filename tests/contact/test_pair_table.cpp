@@ -29,11 +29,12 @@ TEST(PairTable, CollisionDurationEqualsHalfDampedPeriod) {
 }
 
 TEST(PairTable, WallMaterialUsesParticleModulusAndSeriesCombination) {
-  PairTable t({Material{"a", 40e9, {}, 2500.0}, Material{"b", 10e9, {}, 2500.0}, Material{"wall", {}, {}, {}}});
+  PairTable t({Material{"a", 40e9, {}, 2500.0}, Material{"b", 10e9, {}, 2500.0},
+               Material{"wall", {}, {}, {}}});
   t.set(0, 1, PairProperties{0.9, 0.2});
   t.set(0, 2, PairProperties{0.9, 0.2});
   EXPECT_DOUBLE_EQ(t(0, 1).youngs_modulus, 2 * 40e9 * 10e9 / 50e9);  // springs in series
-  EXPECT_DOUBLE_EQ(t(1, 0).youngs_modulus, t(0, 1).youngs_modulus);   // symmetric
+  EXPECT_DOUBLE_EQ(t(1, 0).youngs_modulus, t(0, 1).youngs_modulus);  // symmetric
   EXPECT_DOUBLE_EQ(t(0, 2).youngs_modulus, 40e9);
   PairProperties own{0.9, 0.2};
   own.youngs_modulus = 70e9;

@@ -101,14 +101,14 @@ TEST(ContactLaw, HeadOnPairForceAndTorques) {
   EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
   Vec3 spring;
   const double dt = 1e-7;
-  const ContactResponse r = contact_response<false, false, false>(pair, normal_params(pair, k.effective_radius, k.effective_mass),
-                                                                   k, 1e-3, 1e-3, 0.0, 0.0, dt,
-                                                                   {&spring, nullptr, nullptr, nullptr});
+  const ContactResponse r = contact_response<false, false, false>(
+      pair, normal_params(pair, k.effective_radius, k.effective_mass), k, 1e-3, 1e-3, 0.0, 0.0, dt,
+      {&spring, nullptr, nullptr, nullptr});
   const double kn = 1e8 * 5e-4, cn = 2 * 0.1 * std::sqrt(kn * 1e-5);
   const double fn = kn * 1e-5 + cn * 0.01;
   EXPECT_DOUBLE_EQ(r.normal_force, fn);
-  EXPECT_DOUBLE_EQ(r.force_on_a.x, -fn);  // A is pushed away from B
-  const double ft = 0.5 * kn * 1e-3 * dt;   // stick: k_s * v_t * dt, along +y (B drags A)
+  EXPECT_DOUBLE_EQ(r.force_on_a.x, -fn);   // A is pushed away from B
+  const double ft = 0.5 * kn * 1e-3 * dt;  // stick: k_s * v_t * dt, along +y (B drags A)
   EXPECT_NEAR(r.force_on_a.y, ft, 1e-15);
   // torque on A = lever n x F_t = 1e-3 * (x cross y) * ft = +z
   EXPECT_NEAR(r.torque_on_a.z, 1e-3 * ft, 1e-18);

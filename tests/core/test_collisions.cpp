@@ -40,7 +40,8 @@ CollisionResult collide(double e, double radius_a, double radius_b, double dt_fr
     walls.push_back(plane_wall({0, 0, 0}, {1, 0, 0}));
   } else {
     p.add(0, 0, radius_a, glass_density, {0, 0, 0}, {0.5 * speed, 0, 0}, {}, false);
-    p.add(1, 0, radius_b, glass_density, {radius_a + radius_b + gap, 0, 0}, {-0.5 * speed, 0, 0}, {}, false);
+    p.add(1, 0, radius_b, glass_density, {radius_a + radius_b + gap, 0, 0}, {-0.5 * speed, 0, 0},
+          {}, false);
   }
   const double min_radius = wall ? radius_a : std::min(radius_a, radius_b);
   Simulation sim(std::move(p), walls, table, settings_for(min_radius, e, dt_fraction));
@@ -129,7 +130,8 @@ TEST(EnergyConservation, ElasticFrictionlessGasInABox) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
-        p.add(id++, 0, r, glass_density, {(i + 0.5) * box / 3, (j + 0.5) * box / 3, (k + 0.5) * box / 3},
+        p.add(id++, 0, r, glass_density,
+              {(i + 0.5) * box / 3, (j + 0.5) * box / 3, (k + 0.5) * box / 3},
               {u(rng), u(rng), u(rng)}, {}, false);
   std::vector<Wall> walls;
   for (int d = 0; d < 3; ++d) {

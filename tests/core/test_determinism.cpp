@@ -30,7 +30,8 @@ Simulation random_box(long count, uint64_t seed, bool closed) {
                           plane_wall({0.02, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
                           plane_wall({0, 0.02, 0}, {0, -1, 0})};
   if (closed) walls.push_back(plane_wall({0, 0, 0.03}, {0, 0, -1}));
-  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3, 0.05), settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
+  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3, 0.05),
+                    settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
 }
 
 ParticleStore run_pile(int threads) {
@@ -55,7 +56,8 @@ TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalStates) {
   EXPECT_EQ(a.id, b.id);
   EXPECT_EQ(0, std::memcmp(a.position.data(), b.position.data(), a.size() * sizeof(Vec3)));
   EXPECT_EQ(0, std::memcmp(a.velocity.data(), b.velocity.data(), a.size() * sizeof(Vec3)));
-  EXPECT_EQ(0, std::memcmp(a.angular_velocity.data(), b.angular_velocity.data(), a.size() * sizeof(Vec3)));
+  EXPECT_EQ(0, std::memcmp(a.angular_velocity.data(), b.angular_velocity.data(),
+                           a.size() * sizeof(Vec3)));
 }
 
 TEST(Determinism, RestoredStateContinuesBitIdentically) {
@@ -75,7 +77,8 @@ TEST(Determinism, RestoredStateContinuesBitIdentically) {
   EXPECT_EQ(a.time(), b.time());
   const ParticleStore &x = a.particles(), &y = b.particles();
   EXPECT_EQ(0, std::memcmp(x.position.data(), y.position.data(), x.size() * sizeof(Vec3)));
-  EXPECT_EQ(0, std::memcmp(x.angular_velocity.data(), y.angular_velocity.data(), x.size() * sizeof(Vec3)));
+  EXPECT_EQ(0, std::memcmp(x.angular_velocity.data(), y.angular_velocity.data(),
+                           x.size() * sizeof(Vec3)));
 }
 
 TEST(Determinism, TruncatedStateIsRefused) {

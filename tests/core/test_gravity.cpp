@@ -12,8 +12,12 @@ using namespace grainlab::test;
 
 namespace {
 constexpr double g = 9.81, radius = 1e-3, mu = 0.16;
-double bead_mass() { return glass_density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius; }
-double wall_stiffness() { return std::numbers::pi * glass_E * radius; }  // k_n = pi E r* with r* = r
+double bead_mass() {
+  return glass_density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+}
+double wall_stiffness() {
+  return std::numbers::pi * glass_E * radius;
+}  // k_n = pi E r* with r* = r
 
 // Sphere resting on the plane z = 0, gravity tilted by theta about y (equivalent to an incline).
 Simulation sphere_on_incline(double theta) {
@@ -57,7 +61,8 @@ TEST(Gravity, SphereSlidesOnSteepIncline) {
     Simulation sim = sphere_on_incline(theta);
     while (sim.time() < 5e-3) sim.step();
     const double a = 2.0 * sim.particles().position[0].x / (sim.time() * sim.time());
-    EXPECT_NEAR(a, g * (std::sin(theta) - mu * std::cos(theta)), 0.005 * a) << "tan theta = " << tan_theta;
+    EXPECT_NEAR(a, g * (std::sin(theta) - mu * std::cos(theta)), 0.005 * a)
+        << "tan theta = " << tan_theta;
     // slipping: the surface moves slower than the centre
     const auto& q = sim.particles();
     EXPECT_LT(q.angular_velocity[0].y * radius, 0.99 * q.velocity[0].x);

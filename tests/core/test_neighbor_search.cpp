@@ -22,7 +22,8 @@ ParticleStore random_particles(long count, uint64_t seed) {
   EXPECT_EQ(insert_random_spheres(spheres, box, count, 1.6e-3, 2.4e-3, rng), count);
   ParticleStore p;
   for (size_t i = 0; i < spheres.size(); ++i)
-    p.add(static_cast<uint32_t>(i), 0, spheres[i].radius, glass_density, spheres[i].centre, {}, {}, false);
+    p.add(static_cast<uint32_t>(i), 0, spheres[i].radius, glass_density, spheres[i].centre, {}, {},
+          false);
   return p;
 }
 }  // namespace
@@ -38,7 +39,8 @@ TEST(NeighborSearch, HalfListEqualsBruteForce) {
   for (size_t i = 0; i < p.size(); ++i)
     for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e) {
       ASSERT_GT(pairs.partner[e], i) << "half list: partner index above the particle";
-      listed.insert({std::min(p.id[i], p.id[pairs.partner[e]]), std::max(p.id[i], p.id[pairs.partner[e]])});
+      listed.insert(
+          {std::min(p.id[i], p.id[pairs.partner[e]]), std::max(p.id[i], p.id[pairs.partner[e]])});
     }
   for (size_t i = 0; i < p.size(); ++i)
     for (size_t j = i + 1; j < p.size(); ++j) {
@@ -64,7 +66,9 @@ TEST(NeighborSearch, HistorySurvivesRebuildAndResort) {
   WallContacts walls;
   search.rebuild(p, {}, pairs, walls, {});
   // Tag every entry's history with its pair of ids, then shuffle the store and rebuild.
-  auto tag = [](uint32_t a, uint32_t b) { return Vec3{double(std::min(a, b)), double(std::max(a, b)), 1.0}; };
+  auto tag = [](uint32_t a, uint32_t b) {
+    return Vec3{double(std::min(a, b)), double(std::max(a, b)), 1.0};
+  };
   for (size_t i = 0; i < p.size(); ++i)
     for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
       pairs.sliding_spring[e] = tag(p.id[i], p.id[pairs.partner[e]]);

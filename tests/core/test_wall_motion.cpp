@@ -28,7 +28,8 @@ TEST(WallMotion, MassiveWallAcceleratesUnderExternalForce) {
   Simulation sim(std::move(p), {w}, two_material_table(0.9, 0.1), settings_for(1e-3, 0.9, 0.1));
   sim.advance(2000);
   const double t = sim.time();
-  EXPECT_NEAR(sim.walls()[0].point.x, 0.5 * 4.0 * t * t, 1e-12 * t * t);  // exact for constant force
+  EXPECT_NEAR(sim.walls()[0].point.x, 0.5 * 4.0 * t * t,
+              1e-12 * t * t);  // exact for constant force
 }
 
 TEST(WallMotion, ImpactOnFreeWallConservesMomentum) {
@@ -51,7 +52,8 @@ TEST(WallMotion, ImpactOnFreeWallConservesMomentum) {
 TEST(BlowUp, NanVelocityStopsTheRunWithAdvice) {
   ParticleStore p;
   p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
-  Simulation sim(std::move(p), {plane_wall({}, {0, 0, 1})}, two_material_table(0.9, 0.1), settings_for(1e-3, 0.9, 0.1));
+  Simulation sim(std::move(p), {plane_wall({}, {0, 0, 1})}, two_material_table(0.9, 0.1),
+                 settings_for(1e-3, 0.9, 0.1));
   sim.particles().velocity[0].x = std::nan("");
   try {
     sim.step();

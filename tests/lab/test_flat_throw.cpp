@@ -38,7 +38,8 @@ TEST_P(FlatThrow, OnFixedBeadReturnsInputRestitution) {
   EXPECT_NEAR(r.restitution_simulated, GetParam(), 0.005);
 }
 
-INSTANTIATE_TEST_SUITE_P(RestitutionRange, FlatThrow, ::testing::Values(0.3, 0.5, 0.58, 0.73, 0.926, 0.95));
+INSTANTIATE_TEST_SUITE_P(RestitutionRange, FlatThrow,
+                         ::testing::Values(0.3, 0.5, 0.58, 0.73, 0.926, 0.95));
 
 TEST(FlatThrowTrajectory, FramesFollowTheMeasuredHeights) {
   const FlatThrowResult r = throw_bead(0.58, false);

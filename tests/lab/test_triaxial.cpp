@@ -34,10 +34,10 @@ PairTable reference_pairs() {
 TEST(SpecimenPreparation, ReachesEquilibriumAtConfiningStress) {
   const Specimen s = prepare_cuboid_specimen(small_specimen(), reference_pairs(), nullptr);
   EXPECT_TRUE(s.equilibrium_reached);
-  EXPECT_LT(s.max_stress_error, 0.005);        // wall stresses within 0.5 % of 150 kPa
-  EXPECT_LT(s.unbalanced_force_ratio, 1e-4);   // the equilibrium criterion
+  EXPECT_LT(s.max_stress_error, 0.005);       // wall stresses within 0.5 % of 150 kPa
+  EXPECT_LT(s.unbalanced_force_ratio, 1e-4);  // the equilibrium criterion
   EXPECT_GT(s.solid_fraction, 0.5);
-  EXPECT_LT(s.solid_fraction, 0.64);           // below random close packing
+  EXPECT_LT(s.solid_fraction, 0.64);  // below random close packing
   EXPECT_GT(s.coordination_number, 3.0);
 }
 

@@ -10,7 +10,7 @@
 
 namespace grainlab::test {
 
-inline constexpr double glass_E = 46.2e9;     // Pa (reference beads)
+inline constexpr double glass_E = 46.2e9;        // Pa (reference beads)
 inline constexpr double glass_density = 2500.0;  // kg/m^3
 
 // Material 0: "glass" particles; material 1: "wall" (no E or density of its own).
