@@ -136,14 +136,10 @@ void run_flat_throw(const std::string& path, const toml::table& root, const RunO
   if (!(s.gravity > 0)) t.fail("gravity", "expected g > 0 m/s^2");
   if (!(s.frame_rate > 0)) t.fail("frame_rate", "expected frames per second > 0");
   PairTable table = build_pair_table(c);
-  const int bead = table.find(s.bead_material), target = table.find(s.target_material);
-  if (bead < 0) t.fail("bead_material", fmt::format("unknown material \"{}\"", s.bead_material));
-  if (target < 0)
-    t.fail("target_material", fmt::format("unknown material \"{}\"", s.target_material));
+  const int bead = lab_material(t, table, "bead_material", s.bead_material);
+  const int target = lab_material(t, table, "target_material", s.target_material);
   if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
-  if (!table(bead, target).defined)
-    t.fail("target_material",
-           fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.target_material));
+  require_pair(t, table, "target_material", bead, target);
   s.target_is_bead = t.boolean_or("target_is_bead", bead == target);
   t.finish();
 

@@ -23,4 +23,17 @@ TableReader test_table_reader(const std::string& path, const toml::table& root) 
   return t;
 }
 
+int lab_material(const TableReader& t, const PairTable& table, const char* key,
+                 const std::string& name) {
+  const int m = table.find(name);
+  if (m < 0) t.fail(key, fmt::format("unknown material \"{}\"", name));
+  return m;
+}
+
+void require_pair(const TableReader& t, const PairTable& table, const char* key, int a, int b) {
+  if (!table(a, b).defined)
+    t.fail(key, fmt::format("no [[pair]] for \"{}\" and \"{}\"", table.material(a).name,
+                            table.material(b).name));
+}
+
 }  // namespace grainlab

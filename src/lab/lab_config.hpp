@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "contact/pair_table.hpp"
 #include "io/scene_config.hpp"
 #include "io/toml_reader.hpp"
 
@@ -15,5 +16,13 @@ SceneConfig read_lab_materials(const std::string& path, const toml::table& root)
 
 // The [test] table (ConfigError if missing), with `type` already read.
 TableReader test_table_reader(const std::string& path, const toml::table& root);
+
+// Index of the material named `name`, read from test key `key`; a ConfigError naming the key if
+// there is no such material.
+int lab_material(const TableReader& t, const PairTable& table, const char* key,
+                 const std::string& name);
+
+// A ConfigError naming `key` unless the pair (a, b) is defined.
+void require_pair(const TableReader& t, const PairTable& table, const char* key, int a, int b);
 
 }  // namespace grainlab

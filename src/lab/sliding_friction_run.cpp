@@ -104,16 +104,11 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
     t.fail("target_friction", "expected an apparent friction in (0, 2)");
   if (target && s.loads.size() < 2) t.fail("loads", "the inverse mode needs at least two loads");
   PairTable table = build_pair_table(c);
-  const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
-  if (bead < 0) t.fail("bead_material", fmt::format("unknown material \"{}\"", s.bead_material));
-  if (slider < 0)
-    t.fail("slider_material", fmt::format("unknown material \"{}\"", s.slider_material));
+  const int bead = lab_material(t, table, "bead_material", s.bead_material);
+  const int slider = lab_material(t, table, "slider_material", s.slider_material);
   if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
-  if (!table(bead, bead).defined)
-    t.fail("bead_material", "no [[pair]] for the bead material with itself");
-  if (!table(bead, slider).defined)
-    t.fail("slider_material",
-           fmt::format("no [[pair]] for \"{}\" and \"{}\"", s.bead_material, s.slider_material));
+  require_pair(t, table, "bead_material", bead, bead);
+  require_pair(t, table, "slider_material", bead, slider);
   t.finish();
 
   prepare_output_dir(options.out_dir, options.overwrite);

@@ -17,10 +17,7 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   SpecimenSettings& p = s.specimen;
   c.table = build_pair_table(c.scene);
   auto material = [&](const char* key, const char* fallback) {
-    const std::string name = t.string_or(key, fallback);
-    const int m = c.table.find(name);
-    if (m < 0) t.fail(key, fmt::format("unknown material \"{}\"", name));
-    return m;
+    return lab_material(t, c.table, key, t.string_or(key, fallback));
   };
   p.bead_material = material("bead_material", "glass");
   p.lateral_material = material("lateral_material", "rubber_membrane");
@@ -29,9 +26,7 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   if (!bead.density) t.fail("bead_material", "the bead material needs a density");
   p.density = *bead.density;
   for (int other : {p.bead_material, p.lateral_material, p.platen_material})
-    if (!c.table(p.bead_material, other).defined)
-      t.fail("bead_material", fmt::format("no [[pair]] for \"{}\" and \"{}\"", bead.name,
-                                          c.scene.materials[other].name));
+    require_pair(t, c.table, "bead_material", p.bead_material, other);
   p.count = t.integer_or("count", p.count);
   if (p.count < 8) t.fail("count", "expected at least 8 particles");
   if (p.count > 20'000'000)
