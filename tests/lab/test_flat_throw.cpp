@@ -10,7 +10,7 @@ using namespace grainlab;
 namespace {
 FlatThrowResult throw_bead(double e, bool onto_bead, double friction = 0.2) {
   PairTable table({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"target", {}, {}, {}}});
-  PairProperties p{e, friction};
+  PairProperties p{.restitution = e, .friction = friction};
   table.set(0, 0, p);
   table.set(0, 1, p);
   FlatThrowSettings s;

@@ -24,9 +24,9 @@ SpecimenSettings small_specimen() {
 PairTable reference_pairs() {
   PairTable t({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"rubber_membrane", {}, {}, {}},
                Material{"porous_stone", {}, {}, {}}});
-  t.set(0, 0, PairProperties{0.926, 0.16});
-  t.set(0, 1, PairProperties{0.58, 0.21});
-  t.set(0, 2, PairProperties{0.73, 0.18});
+  t.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
+  t.set(0, 1, PairProperties{.restitution = 0.58, .friction = 0.21});
+  t.set(0, 2, PairProperties{.restitution = 0.73, .friction = 0.18});
   return t;
 }
 }  // namespace
