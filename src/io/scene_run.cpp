@@ -48,13 +48,11 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
   const std::string dir = options.out_dir;
   const long total_steps = static_cast<long>(std::ceil(config.duration / dt.time_step - 1e-9));
   if (!options.quiet)
-    fmt::print(
-        stderr,
-        "grainlab run: {} particles, {} walls, dt = {:.4g} s ({} t_c, t_c = {:.4g} s), {} steps\n",
-        sim.particles().size(), sim.walls().size(), dt.time_step,
-        dt.explicit_dt ? fmt::format("{:.3g}", dt.dt_fraction)
-                       : fmt::format("{:.3g}", dt.dt_fraction),
-        dt.collision_duration, total_steps);
+    fmt::print(stderr,
+               "grainlab run: {} particles, {} walls, dt = {:.4g} s ({:.3g} t_c, t_c = {:.4g} s), "
+               "{} steps\n",
+               sim.particles().size(), sim.walls().size(), dt.time_step, dt.dt_fraction,
+               dt.collision_duration, total_steps);
 
   std::vector<uint32_t> traced = config.output.trace_ids;
   if (config.output.trace_all)

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <random>
 #include <sstream>
 

@@ -48,13 +48,12 @@ nlohmann::json specimen_json(const Specimen& s) {
           {"simulated_time_s", s.simulated_time}};
 }
 
-Specimen obtain_specimen(const TriaxialConfig& c, const RunOptions& options, Progress& progress) {
+Specimen obtain_specimen(const TriaxialConfig& c, Progress& progress) {
   if (c.settings.specimen_file) {
     std::string file = *c.settings.specimen_file;
     if (std::filesystem::is_directory(file)) file += "/specimen.csv";
     return load_specimen(file, c.settings.specimen.density);
   }
-  (void)options;
   return prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
 }
 
@@ -146,7 +145,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   install_interrupt_handler();
   const auto wall_start = std::chrono::steady_clock::now();
   Progress progress("grainlab triaxial", options.quiet);
-  const Specimen specimen = obtain_specimen(c, options, progress);
+  const Specimen specimen = obtain_specimen(c, progress);
   if (!s.specimen_file) save_specimen(options.out_dir + "/specimen.csv", specimen);
 
   // Shearing: no gravity; lateral walls servo-held at the confining stress; platens driven.

@@ -44,10 +44,14 @@ TEST(PairTable, WallMaterialUsesParticleModulusAndSeriesCombination) {
 
 TEST(PairTable, RejectsNonPhysicalValues) {
   PairTable t({Material{"a", 40e9, {}, 2500.0}, Material{"wall", {}, {}, {}}});
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.0, .friction = 0.2}), std::invalid_argument);
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 1.01, .friction = 0.2}), std::invalid_argument);
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.5, .friction = -0.1}), std::invalid_argument);
-  EXPECT_THROW(t.set(1, 1, PairProperties{.restitution = 0.5, .friction = 0.1}), std::invalid_argument);  // no E at all
+  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.0, .friction = 0.2}),
+               std::invalid_argument);
+  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 1.01, .friction = 0.2}),
+               std::invalid_argument);
+  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.5, .friction = -0.1}),
+               std::invalid_argument);
+  EXPECT_THROW(t.set(1, 1, PairProperties{.restitution = 0.5, .friction = 0.1}),
+               std::invalid_argument);  // no E at all
 }
 
 TEST(PairTable, OptionalPiecesSwitchOnlyWhenUsed) {
