@@ -17,7 +17,21 @@
 namespace grainlab {
 namespace {
 
-constexpr uint64_t checkpoint_magic = 0x67726e6c74726931;  // "grnltri1"
+constexpr uint64_t checkpoint_magic = 0x67726e6c74726932;  // "grnltri2"
+
+// Adds the Love-Weber and boundary-average diagonals to the interval sums.
+void add_specimen_stresses(ShearRun& run) {
+  const Simulation& sim = run.sim;
+  ShearProgress& p = run.progress;
+  const Vec3 lo = box_low(sim.walls()), hi = box_high(sim.walls());
+  const double volume = box_volume(sim.walls());
+  const Tensor3 particles = love_weber_stress(sim, volume);
+  const Tensor3 boundary = boundary_stress(sim, 0.5 * (lo + hi), volume);
+  for (int a = 0; a < 3; ++a) {
+    p.particle_stress_sum[a] += particles[a][a];
+    p.boundary_stress_sum[a] += boundary[a][a];
+  }
+}
 
 // Adds this step's stresses to the running sums of the output interval.
 void accumulate(ShearRun& run) {
@@ -26,8 +40,7 @@ void accumulate(ShearRun& run) {
   for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] += wall_stress(sim.walls(), k);
   ++p.wall_samples;
   if (p.step % stress_sample_steps == 0) {
-    const Tensor3 sigma = love_weber_stress(sim, box_volume(sim.walls()));
-    for (int a = 0; a < 3; ++a) p.particle_stress_sum[a] += sigma[a][a];
+    add_specimen_stresses(run);
     ++p.particle_samples;
   }
 }
@@ -43,36 +56,44 @@ void record(ShearRun& run) {
   if (p.wall_samples == 0) {  // first row: the state itself
     for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] = wall_stress(sim.walls(), k);
     p.wall_samples = 1;
-    const Tensor3 sigma = love_weber_stress(sim, volume);
-    for (int a = 0; a < 3; ++a) p.particle_stress_sum[a] = sigma[a][a];
+    add_specimen_stresses(run);
     p.particle_samples = 1;
   }
   std::array<double, 6> w;
   for (int k = 0; k < 6; ++k) w[k] = p.wall_stress_sum[k] / p.wall_samples;
-  std::array<double, 3> particle;
-  for (int a = 0; a < 3; ++a)
+  std::array<double, 3> particle, boundary;
+  for (int a = 0; a < 3; ++a) {
     particle[a] = p.particle_stress_sum[a] / std::max(1L, p.particle_samples);
+    boundary[a] = p.boundary_stress_sum[a] / std::max(1L, p.particle_samples);
+  }
   const double sa = 0.5 * (w[bottom] + w[top]);
   const double sx = 0.5 * (w[x_low] + w[x_high]);
   const double sy = 0.5 * (w[y_low] + w[y_high]);
   const double deviator = sa - 0.5 * (sx + sy), mean = (sa + sx + sy) / 3.0;
   const double inertial = inertial_number(p.strain_rate, p.diameter, p.density, mean);
   run.curve_rows += fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()),
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()),
       exact(axial_strain), exact((p.size0.x - size.x) / p.size0.x),
       exact((p.size0.y - size.y) / p.size0.y), exact(1.0 - volume / volume0), exact(sa), exact(sx),
-      exact(sy), exact(particle[2]), exact(particle[0]), exact(particle[1]), exact(deviator),
-      exact(mean), exact(deviator / mean), exact(solid_fraction(sim.particles(), volume)),
-      exact(coordination_number(sim)), exact(inertial), exact(unbalanced_force_ratio(sim)));
+      exact(sy), exact(particle[2]), exact(particle[0]), exact(particle[1]), exact(boundary[2]),
+      exact(boundary[0]), exact(boundary[1]), exact(deviator), exact(mean), exact(deviator / mean),
+      exact(solid_fraction(sim.particles(), volume)), exact(coordination_number(sim)),
+      exact(inertial), exact(unbalanced_force_ratio(sim)));
   if (p.step > 0) {
     p.max_inertial = std::max(p.max_inertial, inertial);
     for (int k = 0; k < 4; ++k) {
       const double e = w[k] / p.confining_stress - 1.0;
       p.lateral_error2 += e * e;
+      p.max_lateral_error = std::max(p.max_lateral_error, std::abs(e));
       ++p.lateral_samples;
     }
-    if (axial_strain > 0.005)
-      p.worst_agreement = std::max(p.worst_agreement, std::abs(particle[2] - sa) / sa);
+    if (axial_strain > 0.005) {  // past the start-up transient of the platens
+      for (int a = 0; a < 3; ++a)
+        p.worst_agreement =
+            std::max(p.worst_agreement, std::abs(particle[a] - boundary[a]) / boundary[a]);
+      p.platen_excess_sum += sa / boundary[2] - 1.0;
+      ++p.platen_excess_rows;
+    }
   }
   if (sa > p.peak_axial) p.peak_axial = sa, p.peak_strain = axial_strain;
   p.peak_deviator = std::max(p.peak_deviator, deviator);
@@ -82,6 +103,7 @@ void record(ShearRun& run) {
   p.wall_stress_sum = {};
   p.wall_samples = 0;
   p.particle_stress_sum = {};
+  p.boundary_stress_sum = {};
   p.particle_samples = 0;
 }
 
@@ -118,7 +140,8 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s,
   ShearProgress& p = run.progress;
   std::array<StressServo, 4> servos;
   for (int k = 0; k < 4; ++k) {
-    servos[k] = StressServo(ServoSettings{p.confining_stress, 2.0 * p.platen_speed});
+    servos[k] = StressServo(
+        ServoSettings{p.confining_stress, 2.0 * p.platen_speed, holding_proportional_gain});
     servos[k].set_integral(p.servo_integral[k]);
   }
   const double dt = sim.settings().time_step;

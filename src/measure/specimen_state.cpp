@@ -34,6 +34,25 @@ Tensor3 love_weber_stress(const Simulation& sim, double volume) {
   return out;
 }
 
+Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume) {
+  const ParticleStore& p = sim.particles();
+  const WallContacts& wc = sim.wall_contacts();
+  Tensor3 s{};
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
+      if (wc.normal_stiffness[e] == 0.0) continue;
+      const Vec3 f = -1.0 * wc.force_on_particle[e];  // on the wall
+      const WallGap g = wall_gap(sim.walls()[wc.wall[e]], p.position[i]);
+      const Vec3 x = p.position[i] + g.gap * g.normal - centre;  // contact point from x_0
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) s[a][b] += f[a] * x[b];
+    }
+  Tensor3 out{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
+  return out;
+}
+
 double solid_fraction(const ParticleStore& p, double volume) {
   double v = 0.0;
   for (double r : p.radius) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;

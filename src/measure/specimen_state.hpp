@@ -21,6 +21,15 @@ using Tensor3 = std::array<std::array<double, 3>, 3>;
 
 Tensor3 love_weber_stress(const Simulation& sim, double volume);
 
+// Average stress from the boundary alone (the average-stress theorem):
+//   sigma_ij = (1/V) sum over wall contacts f_i (x_c - x_0)_j,
+// f the force on the wall, x_c the contact point, x_0 = `centre`; symmetrised, compressive
+// positive. Unlike the platen stress F/A it includes the moment of the shear forces the walls
+// carry (friction on the lateral walls takes part of the axial load). It differs from the
+// Love-Weber average only by sum over particles of (net force) (x_p - x_0): the inertia of the
+// particles, small once quasi-static.
+Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume);
+
 // Particle volume / box volume.
 double solid_fraction(const ParticleStore& particles, double volume);
 
