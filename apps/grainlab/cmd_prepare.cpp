@@ -5,6 +5,7 @@
 
 #include "command.hpp"
 #include "io/config_error.hpp"
+#include "lab/interrupt.hpp"
 #include "lab/triaxial.hpp"
 
 namespace grainlab::app {
@@ -29,6 +30,9 @@ Command add_prepare_command(CLI::App& app) {
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());
               return exit_bad_input;
+            } catch (const Interrupted& e) {
+              fmt::print(stderr, "\ngrainlab: {}\n", e.what());
+              return exit_interrupted;
             }
             fmt::print("specimen written to {}/specimen.csv\n", options->out_dir);
             return exit_ok;

@@ -17,6 +17,7 @@
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/cuboid_box.hpp"
+#include "lab/interrupt.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
@@ -151,6 +152,8 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
       HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
                    s.unbalanced_tolerance, s.max_time},
       [&](const HoldState& state) {
+        if (interrupt_requested())
+          throw Interrupted("interrupted while preparing the specimen: nothing was saved");
         const bool settled = state.max_stress_error < s.stress_tolerance &&
                              state.unbalanced < s.unbalanced_tolerance;
         if (!friction_restored && (state.solid_fraction >= *s.target_solid_fraction || settled)) {

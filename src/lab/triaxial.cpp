@@ -63,6 +63,7 @@ void run_prepare(const std::string& path, const RunOptions& options) {
   const toml::table root = parse_toml_file(path);
   const TriaxialConfig c = read_triaxial_config(path, root);
   prepare_output_dir(options.out_dir, options.overwrite);
+  install_interrupt_handler();
   const auto start = std::chrono::steady_clock::now();
   Progress progress("grainlab prepare", options.quiet);
   const Specimen s = prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);

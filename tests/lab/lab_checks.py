@@ -218,6 +218,24 @@ def triaxial_small_specimen_shear():
         assert 0.75 * published < ratio < 1.25 * published, ratio
 
 
+def prepare_interrupt():
+    """Ctrl-C while the specimen is being compressed stops it cleanly: exit 130, nothing saved."""
+    import signal
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "t.toml")
+        open(path, "w").write(TRIAXIAL)
+        out = os.path.join(d, "o")
+        p = subprocess.Popen([EXE, "prepare", path, "--out", out, "--quiet", "--threads", "1"],
+                             stderr=subprocess.PIPE, text=True)
+        time.sleep(1.5)
+        p.send_signal(signal.SIGINT)
+        err = p.communicate(timeout=60)[1]
+        assert p.returncode == 130, (p.returncode, err, "preparation must still be running after 1.5 s")
+        assert "interrupted while preparing" in err, err
+        assert not os.path.exists(os.path.join(out, "specimen.csv")), "no specimen from an interrupted run"
+
+
 def resume_without_checkpoint():
     with tempfile.TemporaryDirectory() as d:
         r = run("run", "--resume", d)
