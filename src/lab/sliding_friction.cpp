@@ -115,7 +115,7 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   slider.normal = {0, 0, 1};
   slider.axis_u = {1, 0, 0};
   slider.half_u = 0.5 * slider_length;
-  slider.half_v = 0.5 * (W - 2.0 * d);
+  slider.half_v = 0.5 * W - (s.slider_side_gap >= 0.0 ? s.slider_side_gap : 0.2 * d);
   slider.mass = s.slider_mass;
   finish_wall_geometry(slider);
   std::vector<Wall> walls = bed.walls;

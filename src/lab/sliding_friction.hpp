@@ -23,8 +23,13 @@ struct SlidingFrictionSettings {
   double diameter = 2e-3;       // m (beads uniform within +-1 %)
   double bed_length = 0.04;     // m, along the pull (x)
   double bed_width = 0.016;     // m
-  double slider_length = 0.01;  // m (the slider spans the bed width less a bead diameter)
-  int layers = 3;               // bead count = layers * (length/d) * (width/d)
+  double slider_length = 0.01;  // m
+  // Clearance between each side of the slider and the box's side wall, m (< 0: a fifth of a
+  // diameter). Below a bead radius no bead can enter it: with a one-diameter clearance a bead
+  // wedged between the slider's edge and the wall and jammed the slider (8.7 N mean rope force
+  // at P = 0.2 N).
+  double slider_side_gap = -1.0;
+  int layers = 3;                                 // bead count = layers * (length/d) * (width/d)
   std::vector<double> loads{0.1, 0.2, 0.3, 0.4};  // P, N
   double speed = 0.05;                            // V, m/s
   double slide_distance = 0.012;     // m pulled per load (several diameters: steady sliding)

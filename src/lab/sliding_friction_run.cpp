@@ -71,6 +71,7 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   s.bed_length = t.number_or("bed_length", Quantity::length, s.bed_length);
   s.bed_width = t.number_or("bed_width", Quantity::length, s.bed_width);
   s.slider_length = t.number_or("slider_length", Quantity::length, s.slider_length);
+  s.slider_side_gap = t.number_or("slider_side_gap", Quantity::length, s.slider_side_gap);
   s.layers = static_cast<int>(t.integer_or("layers", s.layers));
   s.loads = read_loads(t);
   s.speed = t.number_or("speed", Quantity::velocity, s.speed);
@@ -87,6 +88,10 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   if (!(s.diameter > 0)) t.fail("diameter", "expected a bead diameter > 0 m");
   if (!(s.bed_length >= 8 * s.diameter && s.bed_width >= 4 * s.diameter))
     t.fail("bed_length", "the bed must be at least 8 bead diameters long and 4 wide");
+  if (s.slider_side_gap >= 0.5 * 0.99 * s.diameter)
+    t.fail("slider_side_gap",
+           "expected a clearance below a bead radius (a bead could wedge between the slider and "
+           "the side wall)");
   if (s.layers < 1 || s.layers > 20) t.fail("layers", "expected 1 to 20 layers");
   if (!(s.speed > 0)) t.fail("speed", "expected a pulling speed > 0 m/s");
   if (!(s.slider_length >= 2 * s.diameter))

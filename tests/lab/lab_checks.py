@@ -236,6 +236,18 @@ def prepare_interrupt():
         assert not os.path.exists(os.path.join(out, "specimen.csv")), "no specimen from an interrupted run"
 
 
+def sliding_side_gap_too_wide():
+    """A slider clearance of a bead radius or more would let beads wedge: refused, nothing written."""
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s.toml")
+        open(path, "w").write(text.replace('slider_length = "16 mm"', 'slider_length = "16 mm"\nslider_side_gap = "1 mm"'))
+        r = run("run", path, "--out", os.path.join(d, "o"))
+        assert r.returncode == 2, (r.returncode, r.stderr)
+        assert "test.slider_side_gap" in r.stderr and "s.toml" in r.stderr, r.stderr
+        assert not os.path.exists(os.path.join(d, "o"))
+
+
 def resume_without_checkpoint():
     with tempfile.TemporaryDirectory() as d:
         r = run("run", "--resume", d)
