@@ -18,7 +18,7 @@ ref = summary["reference"]
 fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
 strain = 100 * data["axial_strain"]
 ax1.plot(strain, 1e-3 * data["axial_stress_walls_Pa"], label="axial stress (platens)")
-ax1.plot(strain, 1e-3 * data["axial_stress_particles_Pa"], "--", label="axial stress (Love-Weber, particles)")
+ax1.plot(strain, 1e-3 * data["axial_stress_particles_Pa"], "--", label="axial stress, specimen average (Love-Weber)")
 ax1.plot(strain, 1e-3 * 0.5 * (data["lateral_stress_x_walls_Pa"] + data["lateral_stress_y_walls_Pa"]),
          label="lateral stress (walls)")
 ax1.plot([100 * ref["laboratory_axial_strain_at_peak"]], [1e-3 * ref["laboratory_peak_axial_stress_Pa"]], "ks",

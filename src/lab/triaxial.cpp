@@ -124,12 +124,12 @@ void finish_triaxial(const ShearRun& run, const std::string& dir, bool quiet) {
     fmt::print(
         "triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 342.4 kPa at "
         "5.11 % ({:+.1f} %), "
-        "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} %; wall time {:.0f} "
-        "s\n",
+        "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} % (worst interval "
+        "{:.2f} %); particle vs boundary stress within {:.2f} %; wall time {:.0f} s\n",
         1e-3 * p.peak_axial, 100 * p.peak_strain,
         100 * (p.peak_axial / lab_peak_axial_stress - 1.0),
         100 * (p.peak_axial / published_dem_peak_axial_stress - 1.0), 100 * rms,
-        j["wall_time_s"].get<double>());
+        100 * p.max_lateral_error, 100 * p.worst_agreement, j["wall_time_s"].get<double>());
 }
 
 std::string read_text(const std::string& path) {
