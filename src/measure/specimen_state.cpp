@@ -3,6 +3,14 @@
 #include <numbers>
 
 namespace grainlab {
+namespace {
+Tensor3 symmetric_over_volume(const Tensor3& s, double volume) {
+  Tensor3 out{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
+  return out;
+}
+}  // namespace
 
 Tensor3 love_weber_stress(const Simulation& sim, double volume) {
   const ParticleStore& p = sim.particles();
@@ -28,10 +36,7 @@ Tensor3 love_weber_stress(const Simulation& sim, double volume) {
     }
   }
   // Compressive positive: a contact pushing the bodies apart (f along l) is compression.
-  Tensor3 out{};
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
-  return out;
+  return symmetric_over_volume(s, volume);
 }
 
 Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume) {
@@ -47,10 +52,7 @@ Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) s[a][b] += f[a] * x[b];
     }
-  Tensor3 out{};
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
-  return out;
+  return symmetric_over_volume(s, volume);
 }
 
 double solid_fraction(const ParticleStore& p, double volume) {

@@ -1,13 +1,15 @@
-// Specimen preparation and the triaxial test on a small cuboid specimen (500 beads of the
-// reference glass): the solid-fraction target is hit, the servo holds the confining stress at
-// rest, and the sheared specimen's stress rises to a peak whose friction angle lies in the range
-// DEM studies of frictional spheres report.
+// Specimen preparation on a small cuboid specimen (500 beads of the reference glass): the
+// solid-fraction target is hit and the servo holds the confining stress at rest; and the three
+// stress measures on an exactly known static state. The sheared specimen (lateral stress held,
+// stresses agreeing, a peak against the published DEM) is checked end to end in lab_checks.py
+// (triaxial_small_specimen_shear).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "lab/cuboid_box.hpp"
 #include "lab/specimen.hpp"
+#include "measure/specimen_state.hpp"
 
 using namespace grainlab;
 
@@ -66,4 +68,38 @@ TEST(SpecimenPreparation, SavedSpecimenReloadsExactly) {
   EXPECT_EQ(back.particles.radius, s.particles.radius);
   EXPECT_EQ(back.low, s.low);
   EXPECT_EQ(back.high, s.high);
+}
+
+// One bead pressed by the six walls of a box slightly smaller than it, with different overlaps
+// across and along: in this static state the stress is known exactly. Each wall pushes with
+// F = k_n * overlap, the contact points lie on the walls, and the average stress over the box is
+// F / (face area) on each axis (the average-stress theorem), with no shear. The wall stress, the
+// Love-Weber average and the boundary average must all give it.
+TEST(SpecimenStresses, BeadSqueezedInABoxGivesWallForceOverArea) {
+  const double r = 1e-3, overlap_x = 2e-7, overlap_z = 5e-7;
+  const Vec3 half{r - overlap_x, r - overlap_x, r - overlap_z};
+  ParticleStore p;
+  p.add(0, 0, r, 2500.0, {0, 0, 0}, {}, {}, false);
+  SimulationSettings settings;
+  settings.time_step = 1e-9;
+  settings.skin = 1e-4;
+  Simulation sim(std::move(p), cuboid_walls(-1.0 * half, half, 1, 2), reference_pairs(), settings);
+  sim.step();  // forces of the static state (the bead does not move: they cancel)
+  const double volume = box_volume(sim.walls());
+  const Tensor3 lw = love_weber_stress(sim, volume);
+  const Tensor3 boundary = boundary_stress(sim, {0, 0, 0}, volume);
+  const double area_x = 4 * half.y * half.z, area_z = 4 * half.x * half.y;
+  const double fx = norm(sim.walls()[x_low].force), fz = norm(sim.walls()[top].force);
+  ASSERT_GT(fx, 0.0);
+  // k_n = pi E r* with r* = r on a wall (DESIGN.md sec. 2); the bead is at rest, so no damping.
+  EXPECT_NEAR(fz, M_PI * 46.2e9 * r * overlap_z, 1e-6 * fz);
+  EXPECT_NEAR(fx, M_PI * 46.2e9 * r * overlap_x, 1e-6 * fx);
+  for (const Tensor3& s : {lw, boundary}) {
+    EXPECT_NEAR(s[0][0], fx / area_x, 1e-9 * fx / area_x);
+    EXPECT_NEAR(s[1][1], fx / area_x, 1e-9 * fx / area_x);
+    EXPECT_NEAR(s[2][2], fz / area_z, 1e-9 * fz / area_z);
+    EXPECT_NEAR(s[0][2], 0.0, 1e-9 * fz / area_z);
+  }
+  EXPECT_NEAR(wall_stress(sim.walls(), top), fz / area_z, 1e-9 * fz / area_z);
+  EXPECT_NEAR(wall_stress(sim.walls(), x_high), fx / area_x, 1e-9 * fx / area_x);
 }
