@@ -248,6 +248,23 @@ def sliding_side_gap_too_wide():
         assert not os.path.exists(os.path.join(d, "o"))
 
 
+def sliding_inverse_on_fixed_beads():
+    """Inverse mode on the Coulomb check (fixed beads, where the apparent friction equals the
+    input mu_s exactly): asked for the laboratory's 0.2116 it must return mu_s = 0.2116."""
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s.toml")
+        open(path, "w").write(text.replace('slide_distance = "8 mm"', 'slide_distance = "8 mm"\nfixed_bed = true\n'
+                                           'target_friction = 0.2116\ntarget_tolerance = 0.0002'))
+        out = os.path.join(d, "o")
+        r = run("run", path, "--out", out, "--quiet")
+        assert r.returncode == 0, r.stderr
+        inverse = json.load(open(os.path.join(out, "summary.json")))["inverse"]
+        print("inverse:", inverse["friction_input_found"], "after", len(inverse["iterations"]), "runs")
+        assert inverse["reached"], inverse
+        assert abs(inverse["friction_input_found"] - 0.2116) < 0.0002, inverse
+
+
 def resume_without_checkpoint():
     with tempfile.TemporaryDirectory() as d:
         r = run("run", "--resume", d)
