@@ -165,7 +165,9 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
       trial.set(bead, slider, p);
       return record(mu, simulate_sliding_friction(s, trial, density));
     };
-    double lo = 0.0, f_lo = -*target;  // mu_s = 0: no friction at all
+    // The lower end is not run: at mu_s = 0 the face carries no tangential force, and the little
+    // the slider's edge adds is taken as zero.
+    double lo = 0.0, f_lo = -*target;
     double hi = r.friction_input, f_hi = record(hi, r);
     double best = hi, best_f = std::abs(f_hi), best_se = last_se;
     auto resolved = [&] { return best_f <= std::max(tolerance, 2.0 * best_se); };
