@@ -45,8 +45,11 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
 }
 
 // Where the slider starts: centred across the bed, its rear edge one diameter from the back wall.
+// Covering the bed: centred so that it overhangs the back wall by the pull and a diameter.
 Vec3 slider_start(const SlidingFrictionSettings& s, double bed_top) {
-  return {s.diameter + 0.5 * s.slider_length, 0.5 * s.bed_width, bed_top + 0.02 * s.diameter};
+  const double x = s.slider_covers_bed ? 0.5 * (s.bed_length - s.slide_distance)
+                                       : s.diameter + 0.5 * s.slider_length;
+  return {x, 0.5 * s.bed_width, bed_top + 0.02 * s.diameter};
 }
 
 Bed fixed_bead_patch(const SlidingFrictionSettings& s, int bead, double density) {

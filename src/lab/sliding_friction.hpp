@@ -29,6 +29,11 @@ struct SlidingFrictionSettings {
   // wedged between the slider's edge and the wall and jammed the slider (8.7 N mean rope force
   // at P = 0.2 N).
   double slider_side_gap = -1.0;
+  // The slider is longer than the bed by the pull and two diameters, so it covers the whole bed
+  // for the whole pull (an interface shear test: the bed is confined by the box and the slider,
+  // nothing can be pushed ahead of an edge or squeezed out from under the face).
+  // slider_length is then derived.
+  bool slider_covers_bed = false;
   int layers = 3;                                 // bead count = layers * (length/d) * (width/d)
   std::vector<double> loads{0.1, 0.2, 0.3, 0.4};  // P, N
   double speed = 0.05;                            // V, m/s

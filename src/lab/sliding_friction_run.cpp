@@ -71,6 +71,10 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   s.bed_length = t.number_or("bed_length", Quantity::length, s.bed_length);
   s.bed_width = t.number_or("bed_width", Quantity::length, s.bed_width);
   s.slider_length = t.number_or("slider_length", Quantity::length, s.slider_length);
+  // Without a slider_length the slider covers the bed (the interface shear test, the default).
+  s.slider_covers_bed = t.boolean_or("slider_covers_bed", !t.has("slider_length"));
+  if (s.slider_covers_bed && t.has("slider_length"))
+    t.fail("slider_length", "not with slider_covers_bed = true (the length is then derived)");
   s.slider_side_gap = t.number_or("slider_side_gap", Quantity::length, s.slider_side_gap);
   s.layers = static_cast<int>(t.integer_or("layers", s.layers));
   s.loads = read_loads(t);
@@ -96,8 +100,10 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   if (!(s.speed > 0)) t.fail("speed", "expected a pulling speed > 0 m/s");
   if (!(s.slider_length >= 2 * s.diameter))
     t.fail("slider_length", "expected at least two bead diameters");
+  if (s.slider_covers_bed) s.slider_length = s.bed_length + s.slide_distance + 2 * s.diameter;
   if (!(s.slide_distance > 0 &&
-        s.slider_length + s.slide_distance + 2 * s.diameter <= s.bed_length))
+        (s.slider_covers_bed ||
+         s.slider_length + s.slide_distance + 2 * s.diameter <= s.bed_length)))
     t.fail(
         "slide_distance",
         "expected a distance > 0 with slider_length + slide_distance + 2 diameters <= bed_length");
