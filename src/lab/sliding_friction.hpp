@@ -4,7 +4,8 @@
 // rope and force sensor) whose far end moves at speed V. The mean rope force while sliding is F;
 // over several loads the slope of F against P (through the origin) is the apparent friction
 // coefficient, which need not equal the input contact friction mu_s: beads roll and rearrange
-// under the slider (docs/virtual-calibration.md).
+// under the slider (docs/lab-tests.md). By default the slider covers the whole bed for the whole
+// pull (an interface shear test), so the bed stays confined and no edge ploughs through it.
 #pragma once
 
 #include <toml++/toml.h>
