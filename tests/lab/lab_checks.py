@@ -279,7 +279,7 @@ def sliding_inverse_on_fixed_beads():
     text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "s.toml")
-        open(path, "w").write(text.replace('slide_distance = "8 mm"', 'slide_distance = "8 mm"\nfixed_bed = true\n'
+        open(path, "w").write(text.replace('slide_distance = "8 mm"', 'slide_distance = "4 mm"\nfixed_bed = true\n'
                                            'target_friction = 0.2116\ntarget_tolerance = 0.0002'))
         out = os.path.join(d, "o")
         r = run("run", path, "--out", out, "--quiet")
