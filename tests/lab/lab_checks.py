@@ -236,16 +236,25 @@ def prepare_interrupt():
         assert not os.path.exists(os.path.join(out, "specimen.csv")), "no specimen from an interrupted run"
 
 
-def sliding_side_gap_too_wide():
-    """A slider clearance of a bead radius or more would let beads wedge: refused, nothing written."""
+def expect_bad_sliding(extra, key, fragment):
     text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "s.toml")
-        open(path, "w").write(text.replace('slide_distance = "8 mm"', 'slide_distance = "8 mm"\nslider_side_gap = "1 mm"'))
+        open(path, "w").write(text.replace('slide_distance = "8 mm"', 'slide_distance = "8 mm"\n' + extra))
         r = run("run", path, "--out", os.path.join(d, "o"))
         assert r.returncode == 2, (r.returncode, r.stderr)
-        assert "test.slider_side_gap" in r.stderr and "s.toml" in r.stderr, r.stderr
+        assert key in r.stderr and fragment in r.stderr and "s.toml" in r.stderr, r.stderr
         assert not os.path.exists(os.path.join(d, "o"))
+
+
+def sliding_side_gap_too_wide():
+    """A slider clearance of a bead radius or more would let beads wedge: refused, nothing written."""
+    expect_bad_sliding('slider_side_gap = "1 mm"', "test.slider_side_gap", "below a bead radius")
+
+
+def sliding_length_with_covering_slider():
+    """A slider that covers the bed has a derived length: giving one too is refused."""
+    expect_bad_sliding('slider_covers_bed = true\nslider_length = "16 mm"', "test.slider_length", "derived")
 
 
 def sliding_friction_on_beads():
