@@ -26,10 +26,11 @@ inline Vec3 rolling_rate(const Vec3& relative_angular_velocity, const Vec3& n) {
   return relative_angular_velocity - dot(relative_angular_velocity, n) * n;
 }
 
-// Moment on body A, N m.
-inline Vec3 rolling_moment(const RollingParams& p, const Vec3& rate, double normal_force, double dt,
-                           RollingHistory& h) {
-  return spring_slider(p.stiffness, p.damping, p.moment_per_force * normal_force, rate, dt,
+// Moment on body A, N m. increment: the step's rolling rotation (rad); rate: end-of-step rolling
+// rate (rad/s, for the dashpot); both from rolling_rate().
+inline Vec3 rolling_moment(const RollingParams& p, const Vec3& increment, const Vec3& rate,
+                           double normal_force, RollingHistory& h) {
+  return spring_slider(p.stiffness, p.damping, p.moment_per_force * normal_force, increment, rate,
                        h.angle);
 }
 

@@ -17,11 +17,12 @@ struct RollingForceHistory {
   Vec3 displacement;  // U_r, m
 };
 
-inline Vec3 rolling_force(const RollingForceParams& p, const Vec3& n,
-                          const Vec3& relative_angular_velocity, double effective_radius,
-                          double normal_force, double dt, RollingForceHistory& h) {
-  const Vec3 rate = effective_radius * cross(relative_angular_velocity, n);
-  return spring_slider(p.stiffness, 0.0, p.friction * normal_force, rate, dt, h.displacement);
+// relative_rotation: the step's relative rotation (rad); the spring has no dashpot.
+inline Vec3 rolling_force(const RollingForceParams& p, const Vec3& n, const Vec3& relative_rotation,
+                          double effective_radius, double normal_force, RollingForceHistory& h) {
+  const Vec3 increment = effective_radius * cross(relative_rotation, n);
+  return spring_slider(p.stiffness, 0.0, p.friction * normal_force, increment, Vec3{},
+                       h.displacement);
 }
 
 }  // namespace grainlab

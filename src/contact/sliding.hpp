@@ -19,11 +19,12 @@ struct SlidingHistory {
 };
 
 // Tangential force on body A, N. The history must already lie in the tangent plane of n
-// (see keep_in_tangent_plane); tangential_velocity is dU_s/dt.
-inline Vec3 sliding_force(const SlidingParams& p, const Vec3& tangential_velocity,
-                          double normal_force, double dt, SlidingHistory& h) {
-  return spring_slider(p.stiffness, p.damping, p.friction * normal_force, tangential_velocity, dt,
-                       h.spring);
+// (see keep_in_tangent_plane); tangential_displacement is the step's increment of U_s (m) and
+// tangential_velocity the end-of-step dU_s/dt (m/s, for the dashpot).
+inline Vec3 sliding_force(const SlidingParams& p, const Vec3& tangential_displacement,
+                          const Vec3& tangential_velocity, double normal_force, SlidingHistory& h) {
+  return spring_slider(p.stiffness, p.damping, p.friction * normal_force, tangential_displacement,
+                       tangential_velocity, h.spring);
 }
 
 }  // namespace grainlab

@@ -18,11 +18,14 @@ inline void keep_in_tangent_plane(Vec3& history, const Vec3& n) {
   history = in_plane;
 }
 
-// Advances the history by rate*dt and returns stiffness*history + damping*rate, capped in length
-// at `cap`. Units follow the caller: displacement/force for sliding, angle/moment for rolling.
-inline Vec3 spring_slider(double stiffness, double damping, double cap, const Vec3& rate, double dt,
-                          Vec3& history) {
-  history += dt * rate;
+// Advances the history by `increment` (what the step actually moved: in velocity Verlet the
+// half-step relative velocity times dt, which makes the spring second order) and returns
+// stiffness*history + damping*rate, capped in length at `cap`. `rate` is the end-of-step estimate
+// of the relative velocity, used by the dashpot only. Units follow the caller:
+// displacement/force for sliding, angle/moment for rolling.
+inline Vec3 spring_slider(double stiffness, double damping, double cap, const Vec3& increment,
+                          const Vec3& rate, Vec3& history) {
+  history += increment;
   Vec3 response = stiffness * history + damping * rate;
   const double magnitude2 = norm2(response);
   if (magnitude2 > cap * cap) {

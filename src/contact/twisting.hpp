@@ -20,11 +20,13 @@ struct TwistingHistory {
   double angle = 0.0;  // rad
 };
 
-inline Vec3 twisting_moment(const TwistingParams& p, const Vec3& n,
-                            const Vec3& relative_angular_velocity, double normal_force, double dt,
+// relative_rotation: the step's relative rotation (rad) that advances the spring;
+// relative_angular_velocity: end-of-step estimate (rad/s) for the dashpot.
+inline Vec3 twisting_moment(const TwistingParams& p, const Vec3& n, const Vec3& relative_rotation,
+                            const Vec3& relative_angular_velocity, double normal_force,
                             TwistingHistory& h) {
   const double rate = dot(relative_angular_velocity, n);
-  h.angle += rate * dt;
+  h.angle += dot(relative_rotation, n);
   double moment = p.stiffness * h.angle + p.damping * rate;
   const double cap = p.moment_per_force * normal_force;
   if (std::abs(moment) > cap) {

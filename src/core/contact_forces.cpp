@@ -16,6 +16,8 @@ namespace {
 // which is a first-order error in the dissipation (at dt = 0.1 t_c a single collision with
 // e = 0.5 rebounds with 0.46). Completing the kick with the last force,
 // v(t + dt) ~ v(t + dt/2) + dt/2 F(t)/m, makes it second order (docs/contact-model.md).
+// The springs instead advance by dt v(t + dt/2), the displacement the drift actually made
+// (contact/kinematics.hpp).
 inline Vec3 velocity_at_step_end(const ParticleStore& p, size_t i, double dt) {
   return p.velocity[i] + (0.5 * dt * p.inverse_mass[i]) * p.force[i];
 }
@@ -56,6 +58,15 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
+      {
+        // mid-step geometry for the springs' increments (contact/kinematics.hpp)
+        const Vec3 d_mid = d - (0.5 * dt) * (p.velocity[j] - p.velocity[i]);
+        const double dist_mid = norm(d_mid);
+        const double lever_shift = 0.5 * (dist_mid - dist);  // half of U_n(end) - U_n(mid)
+        set_step_displacement(k, dt, (1.0 / dist_mid) * d_mid, p.velocity[i],
+                              p.angular_velocity[i], lever_i + lever_shift, p.velocity[j],
+                              p.angular_velocity[j], lever_j + lever_shift);
+      }
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
                             velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
       double inertia = 0.0, contact_radius = 0.0;
@@ -66,9 +77,20 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
-      const ContactResponse r = contact_response<R, T, RF>(
-          row_params[p.material[j]], {c.normal_stiffness[e], c.normal_damping[e]}, k, lever_i,
-          lever_j, inertia, contact_radius, dt, h);
+      // A contact whose overlap is no more than twice the step's growth may have begun in this
+      // step: undo the drift (exactly: positions moved by dt v) to find the overlap before it.
+      double touch_fraction = 0.0;
+      if (k.overlap <= 2.0 * k.overlap_increment) {
+        touch_fraction = first_touch_fraction(
+            reach - norm(d - dt * (p.velocity[j] - p.velocity[i])), k.overlap);
+        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+      }
+      const PairParams& pair = row_params[p.material[j]];
+      const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
+      ContactResponse r =
+          contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
+      if (touch_fraction > 0.0)
+        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
       c.force_on_first[e] = r.force_on_a;
       c.torque_on_first[e] = r.torque_on_a;
       c.torque_on_second[e] = r.torque_on_b;
@@ -110,6 +132,14 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       k.effective_radius = r;
       k.effective_mass = 1.0 / inverse_mass_sum;
       const double lever = g.gap;  // contact point on the wall surface
+      // Mid-step lever: the gap grows back by half the step's overlap increment. (The normal of a
+      // plane is fixed; on a cylinder the end-of-step normal is used, a first-order term of
+      // relative size dt v_t / R_cylinder.)
+      const Vec3 relative_half = w.velocity - p.velocity[i] +
+                                 lever * cross(p.angular_velocity[i], g.normal);
+      const double lever_mid = lever - 0.5 * dt * dot(relative_half, g.normal);
+      set_step_displacement(k, dt, g.normal, p.velocity[i], p.angular_velocity[i], lever_mid,
+                            w.velocity, Vec3{}, 0.0);
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
                             w.velocity, Vec3{}, 0.0);
       double inertia = 0.0, contact_radius = 0.0;
@@ -121,9 +151,18 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
       const PairParams& pair = table(p.material[i], w.material);
-      const ContactResponse resp = contact_response<R, T, RF>(
-          pair, normal_params(pair, k.effective_radius, k.effective_mass), k, lever, 0.0, inertia,
-          contact_radius, dt, h);
+      // First touch in this step (see the pair loop); the gap to a flat wall is linear in the
+      // positions, so undoing the drift subtracts the step's overlap increment.
+      double touch_fraction = 0.0;
+      if (overlap <= 2.0 * k.overlap_increment) {
+        touch_fraction = first_touch_fraction(overlap - k.overlap_increment, overlap);
+        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+      }
+      const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
+      ContactResponse resp =
+          contact_response<R, T, RF>(pair, normal, k, lever, 0.0, inertia, contact_radius, h);
+      if (touch_fraction > 0.0)
+        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever, 0.0, inertia, resp);
       c.force_on_particle[e] = resp.force_on_a;
       c.torque_on_particle[e] = resp.torque_on_a;
       c.normal_stiffness[e] = resp.normal_stiffness;

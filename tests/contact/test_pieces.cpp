@@ -15,15 +15,15 @@ TEST(SlidingPiece, ElasticThenCoulombSlip) {
   const SlidingParams p{1000.0, 0.0, 0.5};
   SlidingHistory h;
   // stick: U_s = 0.001 m, F = k_s U_s = 1 N < mu F_n = 5 N
-  Vec3 f = sliding_force(p, {0.001, 0.0, 0.0}, 10.0, 1.0, h);
+  Vec3 f = sliding_force(p, {0.001, 0.0, 0.0}, {0.001, 0.0, 0.0}, 10.0, h);
   EXPECT_DOUBLE_EQ(f.x, 1.0);
   EXPECT_DOUBLE_EQ(h.spring.x, 0.001);
   // slip: trial 1000 * 0.011 = 11 N > 5 N: force on the cap, spring shortened to 5/1000 m
-  f = sliding_force(p, {0.01, 0.0, 0.0}, 10.0, 1.0, h);
+  f = sliding_force(p, {0.01, 0.0, 0.0}, {0.01, 0.0, 0.0}, 10.0, h);
   EXPECT_DOUBLE_EQ(f.x, 5.0);
   EXPECT_DOUBLE_EQ(h.spring.x, 0.005);
   // no normal force: no friction, and the spring is emptied
-  f = sliding_force(p, {0.0, 0.0, 0.0}, 0.0, 1.0, h);
+  f = sliding_force(p, {}, {}, 0.0, h);
   EXPECT_DOUBLE_EQ(norm(f), 0.0);
   EXPECT_DOUBLE_EQ(norm(h.spring), 0.0);
 }
@@ -32,13 +32,23 @@ TEST(SlidingPiece, DashpotCountsTowardsTheCap) {
   const SlidingParams p{1000.0, 100.0, 0.5};
   SlidingHistory h;
   // trial: k_s * 0.001 + c_s * 0.01 = 1 + 1 = 2 N (below 5 N cap)
-  const Vec3 f = sliding_force(p, {0.01, 0.0, 0.0}, 10.0, 0.1, h);
+  const Vec3 f = sliding_force(p, {0.001, 0.0, 0.0}, {0.01, 0.0, 0.0}, 10.0, h);
   EXPECT_DOUBLE_EQ(f.x, 2.0);
   // at slip the spring keeps (F - c v)/k
   SlidingHistory g;
-  const Vec3 s = sliding_force(p, {0.04, 0.0, 0.0}, 10.0, 0.1, g);  // trial 4 + 4 = 8 N
+  const Vec3 s = sliding_force(p, {0.004, 0.0, 0.0}, {0.04, 0.0, 0.0}, 10.0, g);  // trial 4 + 4 = 8 N
   EXPECT_DOUBLE_EQ(s.x, 5.0);
   EXPECT_DOUBLE_EQ(g.spring.x, (5.0 - 4.0) / 1000.0);
+}
+
+TEST(SpringSlider, SpringTakesTheIncrementAndDashpotTheRate) {
+  // The history advances by the step's displacement only; the dashpot reads the rate only.
+  Vec3 h;
+  const Vec3 f = spring_slider(10.0, 2.0, 100.0, {0.1, 0.0, 0.0}, {0.0, 3.0, 0.0}, h);
+  EXPECT_DOUBLE_EQ(h.x, 0.1);
+  EXPECT_DOUBLE_EQ(h.y, 0.0);
+  EXPECT_DOUBLE_EQ(f.x, 1.0);  // k * 0.1
+  EXPECT_DOUBLE_EQ(f.y, 6.0);  // c * 3
 }
 
 TEST(SpringSlider, HistoryTurnsIntoNewTangentPlaneKeepingLength) {
@@ -53,9 +63,9 @@ TEST(RollingPiece, SpringSliderOnRelativeRotation) {
   RollingHistory h;
   const Vec3 rate = rolling_rate({0.0, 0.01, 0.3}, {0.0, 0.0, 1.0});  // spin about n is not rolling
   EXPECT_DOUBLE_EQ(rate.z, 0.0);
-  Vec3 m = rolling_moment(p, rate, 100.0, 0.1, h);  // theta = 1e-3 rad: M = 2e-3 < 1e-2 N m
+  Vec3 m = rolling_moment(p, 0.1 * rate, rate, 100.0, h);  // theta = 1e-3 rad: M = 2e-3 < 1e-2 N m
   EXPECT_DOUBLE_EQ(m.y, 2e-3);
-  m = rolling_moment(p, {0.0, 1.0, 0.0}, 100.0, 0.1, h);  // trial 0.202 > 0.01: capped
+  m = rolling_moment(p, {0.0, 0.1, 0.0}, {0.0, 1.0, 0.0}, 100.0, h);  // trial 0.202 > 0.01: capped
   EXPECT_DOUBLE_EQ(m.y, 1e-2);
   EXPECT_DOUBLE_EQ(h.angle.y, 5e-3);
 }
@@ -70,9 +80,9 @@ TEST(RollingPiece, ContactCircleRadius) {
 TEST(TwistingPiece, CapsAboutTheNormal) {
   const TwistingParams p{1.0, 0.0, 1e-3};
   TwistingHistory h;
-  Vec3 m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, 0.5}, 10.0, 0.01, h);  // 5e-3 < 1e-2
+  Vec3 m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, 5e-3}, {0.0, 0.0, 0.5}, 10.0, h);  // 5e-3 < 1e-2
   EXPECT_DOUBLE_EQ(m.z, 5e-3);
-  m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, -5.0}, 10.0, 0.01, h);  // -4.5e-2 capped
+  m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, -5e-2}, {0.0, 0.0, -5.0}, 10.0, h);  // -4.5e-2 capped
   EXPECT_DOUBLE_EQ(m.z, -1e-2);
   EXPECT_DOUBLE_EQ(h.angle, -1e-2);
 }
@@ -81,7 +91,7 @@ TEST(RollingForcePiece, ResistsRollingDisplacement) {
   const RollingForceParams p{100.0, 0.1};
   RollingForceHistory h;
   // w_rel = (0, 1, 0), n = z: rate = r* (w x n) = 0.5 * (1, 0, 0)
-  const Vec3 f = rolling_force(p, {0, 0, 1}, {0.0, 1.0, 0.0}, 0.5, 100.0, 0.01, h);
+  const Vec3 f = rolling_force(p, {0, 0, 1}, {0.0, 0.01, 0.0}, 0.5, 100.0, h);
   EXPECT_DOUBLE_EQ(f.x, 100.0 * 0.005);
 }
 
@@ -101,8 +111,12 @@ TEST(ContactLaw, HeadOnPairForceAndTorques) {
   EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
   Vec3 spring;
   const double dt = 1e-7;
+  set_step_displacement(k, dt, k.normal, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0},
+                        1e-3);
+  EXPECT_DOUBLE_EQ(k.tangential_displacement.y, 1e-3 * dt);
+  EXPECT_DOUBLE_EQ(k.overlap_increment, 0.01 * dt);
   const ContactResponse r = contact_response<false, false, false>(
-      pair, normal_params(pair, k.effective_radius, k.effective_mass), k, 1e-3, 1e-3, 0.0, 0.0, dt,
+      pair, normal_params(pair, k.effective_radius, k.effective_mass), k, 1e-3, 1e-3, 0.0, 0.0,
       {&spring, nullptr, nullptr, nullptr});
   const double kn = 1e8 * 5e-4, cn = 2 * 0.1 * std::sqrt(kn * 1e-5);
   const double fn = kn * 1e-5 + cn * 0.01;
