@@ -44,9 +44,9 @@ inline void set_relative_velocity(ContactKinematics& k, const Vec3& velocity_a,
                                   const Vec3& velocity_b, const Vec3& angular_velocity_b,
                                   double lever_b) {
   const Vec3& n = k.normal;
-  const Vec3 surface_a = velocity_a + lever_a * cross(angular_velocity_a, n);
-  const Vec3 surface_b = velocity_b - lever_b * cross(angular_velocity_b, n);
-  const Vec3 relative = surface_b - surface_a;
+  // surface velocities v_a + lever_a (w_a x n) and v_b - lever_b (w_b x n): one cross product
+  const Vec3 relative =
+      velocity_b - velocity_a - cross(lever_b * angular_velocity_b + lever_a * angular_velocity_a, n);
   const double normal_speed = dot(relative, n);
   k.overlap_rate = -normal_speed;
   k.tangential_velocity = relative - normal_speed * n;
@@ -54,24 +54,24 @@ inline void set_relative_velocity(ContactKinematics& k, const Vec3& velocity_a,
 }
 
 // The step's relative displacement at the contact point from the half-step velocities (the ones
-// the drift used): the increments of the spring histories. For the midpoint rule to be second
-// order the contact geometry must be the one at mid-step too: `mid_normal` is the normal at
-// t + dt/2 and lever_a, lever_b the levers there (with the end-of-step levers the increment is
-// off by dt w dU_n/2 each step, a first-order drift of the spring). The tangential part is
-// taken in the plane of the mid-step normal and then in the current one (k.normal), where the
-// history lives.
-inline void set_step_displacement(ContactKinematics& k, double dt, const Vec3& mid_normal,
-                                  const Vec3& velocity_a, const Vec3& angular_velocity_a,
-                                  double lever_a, const Vec3& velocity_b,
-                                  const Vec3& angular_velocity_b, double lever_b) {
-  const Vec3& n = mid_normal;
-  const Vec3 surface_a = velocity_a + lever_a * cross(angular_velocity_a, n);
-  const Vec3 surface_b = velocity_b - lever_b * cross(angular_velocity_b, n);
-  const Vec3 relative = surface_b - surface_a;
-  const double normal_speed = dot(relative, n);
+// the drift used): the increments of the spring histories. For the midpoint rule the levers are
+// those at mid-step: lever + lever_growth * (U_n(end) - U_n(mid)), with lever_growth 1/4 for each
+// sphere of a pair (lever r - U_n/2) and 1/2 for a sphere on a wall (lever r - U_n). With the
+// end-of-step levers the increment is off by dt w dU_n/2 each step, a drift of the spring.
+inline void set_step_displacement(ContactKinematics& k, double dt, const Vec3& velocity_a,
+                                  const Vec3& angular_velocity_a, double lever_a,
+                                  const Vec3& velocity_b, const Vec3& angular_velocity_b,
+                                  double lever_b, double lever_growth) {
+  const Vec3& n = k.normal;
+  // the spin terms (w x n) have no normal component
+  const double normal_speed = dot(velocity_b - velocity_a, n);
   k.overlap_increment = -dt * normal_speed;
-  const Vec3 tangential = relative - normal_speed * n;
-  k.tangential_displacement = dt * (tangential - dot(tangential, k.normal) * k.normal);
+  const double shift = lever_growth * 0.5 * k.overlap_increment;
+  const Vec3 relative = velocity_b - velocity_a -
+                        cross((lever_b + shift) * angular_velocity_b +
+                                  (lever_a + shift) * angular_velocity_a,
+                              n);
+  k.tangential_displacement = dt * (relative - dot(relative, n) * n);
   k.relative_rotation = dt * (angular_velocity_b - angular_velocity_a);
 }
 

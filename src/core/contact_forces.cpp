@@ -58,15 +58,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-      {
-        // mid-step geometry for the springs' increments (contact/kinematics.hpp)
-        const Vec3 d_mid = d - (0.5 * dt) * (p.velocity[j] - p.velocity[i]);
-        const double dist_mid = norm(d_mid);
-        const double lever_shift = 0.5 * (dist_mid - dist);  // half of U_n(end) - U_n(mid)
-        set_step_displacement(k, dt, (1.0 / dist_mid) * d_mid, p.velocity[i],
-                              p.angular_velocity[i], lever_i + lever_shift, p.velocity[j],
-                              p.angular_velocity[j], lever_j + lever_shift);
-      }
+      set_step_displacement(k, dt, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
+                            p.angular_velocity[j], lever_j, 0.25);
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
                             velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
       double inertia = 0.0, contact_radius = 0.0;
@@ -132,14 +125,8 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       k.effective_radius = r;
       k.effective_mass = 1.0 / inverse_mass_sum;
       const double lever = g.gap;  // contact point on the wall surface
-      // Mid-step lever: the gap grows back by half the step's overlap increment. (The normal of a
-      // plane is fixed; on a cylinder the end-of-step normal is used, a first-order term of
-      // relative size dt v_t / R_cylinder.)
-      const Vec3 relative_half = w.velocity - p.velocity[i] +
-                                 lever * cross(p.angular_velocity[i], g.normal);
-      const double lever_mid = lever - 0.5 * dt * dot(relative_half, g.normal);
-      set_step_displacement(k, dt, g.normal, p.velocity[i], p.angular_velocity[i], lever_mid,
-                            w.velocity, Vec3{}, 0.0);
+      set_step_displacement(k, dt, p.velocity[i], p.angular_velocity[i], lever, w.velocity, Vec3{},
+                            0.0, 0.5);
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
                             w.velocity, Vec3{}, 0.0);
       double inertia = 0.0, contact_radius = 0.0;

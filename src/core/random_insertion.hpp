@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/sphere_grid.hpp"
 #include "core/vec3.hpp"
 
 namespace grainlab {
@@ -18,11 +19,6 @@ struct InsertionRegion {
   Vec3 box_min, box_max;              // box
   Vec3 base;                          // cylinder bottom centre, axis +z
   double radius = 0.0, height = 0.0;  // cylinder
-};
-
-struct Sphere {
-  Vec3 centre;
-  double radius;
 };
 
 // Deterministic uniform double in [0, 1) from a 64-bit generator (same on every platform).

@@ -3,6 +3,21 @@
 #include <fmt/format.h>
 
 namespace grainlab {
+namespace {
+
+nlohmann::json spring_dashpots_json(const std::vector<SpringDashpot>& pieces) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const SpringDashpot& s : pieces)
+    list.push_back({{"piece", s.piece},
+                    {"stiffness", s.stiffness},
+                    {"damping", s.damping},
+                    {"effective_inertia", s.mass},
+                    {"damping_ratio", s.damping_ratio},
+                    {"critical_step_s", s.critical_step}});
+  return list;
+}
+
+}  // namespace
 
 nlohmann::json derived_pairs_json(const std::vector<DerivedPair>& pairs, const TimeStepChoice& dt) {
   nlohmann::json list = nlohmann::json::array();
@@ -26,13 +41,18 @@ nlohmann::json derived_pairs_json(const std::vector<DerivedPair>& pairs, const T
         {"damping_ratio_used", p.damping_ratio},
         {"mu_theta_m_at_half_percent_overlap", p.rolling_moment_per_force_at_half_percent},
         {"collision_duration_s", p.collision_duration},
+        {"stable_step_s", p.step_limit.time_step},
+        {"spring_dashpots", spring_dashpots_json(p.spring_dashpots)},
     });
   }
   return {{"pairs", list},
           {"collision_duration_s", dt.collision_duration},
           {"time_step_s", dt.time_step},
           {"dt_fraction", dt.dt_fraction},
-          {"time_step_explicit", dt.explicit_dt}};
+          {"time_step_explicit", dt.explicit_dt},
+          {"stable_step_s", dt.stable_limit},
+          {"stable_step_set_by", dt.stable_limit_set_by},
+          {"time_step_limited_by_stability", !dt.limited_by.empty()}};
 }
 
 std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const TimeStepChoice& dt) {
@@ -54,16 +74,23 @@ std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const Time
       out += fmt::format(
           "{:<28} rolling: ARF = {:.4g}, mu_theta = ARF a = {:.4e} m at U_n = 0.5 % r*\n", "",
           p.arf, p.rolling_moment_per_force_at_half_percent);
+    std::string pieces;
+    for (const SpringDashpot& s : p.spring_dashpots)
+      pieces += fmt::format("{}{} {:.3e} s (zeta {:.3g})", pieces.empty() ? "" : ", ", s.piece,
+                            s.critical_step, s.damping_ratio);
+    out += fmt::format("{:<28} critical steps: {}\n", "", pieces);
   }
   out += fmt::format(
       "\ncollision duration t_c (Eq. 11, smallest over the pairs) = {:.4e} s\n"
+      "stable step (half the smallest critical step, {}) = {:.4e} s\n"
       "time step dt = {:.4e} s = {:.3g} t_c{}\n"
       "zeta_Eq7: textbook damping ratio -ln e / sqrt(pi^2 + ln^2 e); zeta: the ratio grainlab "
       "uses,\n"
       "which returns e exactly with the no-tension clamp (docs/contact-model.md).\n",
-      dt.collision_duration, dt.time_step, dt.dt_fraction,
-      dt.explicit_dt ? " (set explicitly)"
-                     : " (dt_fraction; integrating at t_c itself is unstable)");
+      dt.collision_duration, dt.stable_limit_set_by, dt.stable_limit, dt.time_step, dt.dt_fraction,
+      dt.explicit_dt            ? " (set explicitly)"
+      : !dt.limited_by.empty() ? " (lowered below dt_fraction * t_c for stability)"
+                                : " (dt_fraction; integrating at t_c itself is unstable)");
   return out;
 }
 

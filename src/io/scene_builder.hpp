@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <cmath>
+
 #include "contact/pair_table.hpp"
+#include "contact/stability.hpp"
 #include "core/particles.hpp"
 #include "core/simulation.hpp"
 #include "io/scene_config.hpp"
@@ -28,6 +31,8 @@ struct DerivedPair {
   double restitution = 0.0, friction = 0.0, arf = 0.0;
   double rolling_moment_per_force_at_half_percent = 0.0;  // mu_theta at U_n = 0.5 % of r*, m
   double collision_duration = 0.0;                        // s, Eq. 11 (textbook damping)
+  std::vector<SpringDashpot> spring_dashpots;  // every piece in use, with its critical step
+  StepLimit step_limit;                        // stability_margin * the smallest critical step
 };
 
 struct TimeStepChoice {
@@ -35,6 +40,9 @@ struct TimeStepChoice {
   double time_step = 0.0;           // s
   double dt_fraction = 0.0;         // dt / t_c
   bool explicit_dt = false;
+  double stable_limit = INFINITY;  // largest step every spring-dashpot in use allows, s
+  std::string limited_by;          // set when the stable limit lowered dt_fraction * t_c
+  std::string stable_limit_set_by; // the piece that sets stable_limit
 };
 
 PairTable build_pair_table(const SceneConfig& config);

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
+#include "io/packing_csv.hpp"
 #include "io/toml_reader.hpp"
 
 namespace grainlab {
@@ -155,6 +158,27 @@ void read_particles(const toml::table& root, SceneConfig& c) {
   if (const toml::array* a = array_of_tables(root, "particles", c.file)) {
     for (size_t k = 0; k < a->size(); ++k) {
       TableReader r(*a->get(k)->as_table(), c.file, fmt::format("particles[{}]", k + 1));
+      if (r.has("file")) {  // a packing read from CSV (io/packing_csv.hpp)
+        const std::filesystem::path given = r.string("file");
+        const std::string path =
+            given.is_absolute()
+                ? given.string()
+                : (std::filesystem::path(c.file).parent_path() / given).lexically_normal().string();
+        int default_material = -1;
+        if (r.has("material")) {
+          default_material = material_index(r, "material", r.string("material"), c.materials);
+          require_particle_material(r, c.materials[default_material]);
+        }
+        const bool fixed = r.boolean_or("fixed", false);
+        r.finish();  // count, region, diameter... belong to random batches, not to a file
+        std::vector<ParticleEntry> rows =
+            read_packing_csv(path, c.materials, default_material, fixed);
+        const int source = static_cast<int>(c.packing_files.size());
+        c.packing_files.push_back(path);
+        for (ParticleEntry& p : rows) p.source = source;
+        c.particles.insert(c.particles.end(), rows.begin(), rows.end());
+        continue;
+      }
       ParticleBatch b;
       b.line = r.line_of("");
       b.material = material_index(r, "material", r.string("material"), c.materials);

@@ -26,7 +26,8 @@ struct ParticleEntry {
   double radius = 0.0;
   Vec3 position, velocity, angular_velocity;
   bool fixed = false;
-  int line = 0;
+  int line = 0;     // in the config, or in the packing file
+  int source = -1;  // index into SceneConfig::packing_files; -1: the config itself
 };
 
 enum class RegionShape { box, cylinder };
@@ -63,7 +64,8 @@ struct SceneConfig {
   double max_speed = 100.0;    // m/s
   std::vector<Material> materials;
   std::vector<PairEntry> pairs;
-  std::vector<ParticleEntry> particles;
+  std::vector<ParticleEntry> particles;  // [[particle]] entries, then packing-file rows
+  std::vector<std::string> packing_files;  // [[particles]] file = ..., resolved paths
   std::vector<ParticleBatch> batches;
   std::vector<Wall> walls;
   std::vector<int> wall_lines;

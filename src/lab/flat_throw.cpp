@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "core/simulation.hpp"
 #include "grainlab/version.hpp"
@@ -55,7 +56,7 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   }
   const double t_c = collision_duration(r, bead_density, pair.youngs_modulus, pair.restitution);
   SimulationSettings settings;
-  settings.time_step = s.dt_fraction * t_c;
+  settings.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r).time_step;
   settings.dt_fraction = s.dt_fraction;
   settings.gravity = {0.0, 0.0, -g};
   settings.skin = 0.2 * r;

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "calibrate/friction_fits.hpp"
+#include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
 #include "io/progress.hpp"
@@ -37,7 +38,10 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
   const PairParams& pp = table(bead, bead);
   SimulationSettings out;
   out.time_step =
-      s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
+      stable_time_step(
+          s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution),
+          table, bead, r_min)
+          .time_step;
   out.dt_fraction = s.dt_fraction;
   out.gravity = {0.0, 0.0, -s.gravity};
   out.skin = 0.1 * s.diameter;

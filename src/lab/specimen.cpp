@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "control/stress_servo.hpp"
 #include "core/random_insertion.hpp"
@@ -134,7 +135,10 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   const PairParams& glass = original(s.bead_material, s.bead_material);
   SimulationSettings settings;
   settings.time_step =
-      s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
+      stable_time_step(s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus,
+                                                          glass.restitution),
+                       original, s.bead_material, r_min)
+          .time_step;
   settings.dt_fraction = s.dt_fraction;
   settings.skin = 0.1 * s.diameter;
   // Steering: compact frictionless until the target solid fraction is reached, then switch the

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "control/stress_servo.hpp"
 #include "core/simulation.hpp"
@@ -161,8 +162,12 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   double r_min = 1e300;
   for (double r : specimen.particles.radius) r_min = std::min(r_min, r);
   SimulationSettings settings;
-  settings.time_step = sp.dt_fraction * collision_duration(r_min, sp.density, glass.youngs_modulus,
-                                                           glass.restitution);
+  const double collision_duration_of_beads =
+      collision_duration(r_min, sp.density, glass.youngs_modulus, glass.restitution);
+  const TimeStepChoiceForMaterial step = stable_time_step(
+      sp.dt_fraction * collision_duration_of_beads, c.table, sp.bead_material, r_min);
+  const std::string time_step_limited_by = step.limited_by;
+  settings.time_step = step.time_step;
   settings.dt_fraction = sp.dt_fraction;
   settings.skin = 0.1 * sp.diameter;
   ShearRun run{
@@ -228,7 +233,8 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
       s.specimen_file ? *s.specimen_file : std::string("prepared in this run");
   j["time_step_s"] = dt;
   j["dt_fraction"] = sp.dt_fraction;
-  j["collision_duration_s"] = dt / sp.dt_fraction;
+  j["collision_duration_s"] = collision_duration_of_beads;
+  j["time_step_limited_by"] = time_step_limited_by;
   j["loading"] = {{"platen_speed_m_per_s", p.platen_speed},
                   {"strain_rate_per_s", p.strain_rate},
                   {"rule", s.platen_speed ? "platen speed given (paper: 0.01 m/s)"

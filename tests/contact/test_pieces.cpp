@@ -111,8 +111,8 @@ TEST(ContactLaw, HeadOnPairForceAndTorques) {
   EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
   Vec3 spring;
   const double dt = 1e-7;
-  set_step_displacement(k, dt, k.normal, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0},
-                        1e-3);
+  set_step_displacement(k, dt, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0}, 1e-3,
+                        0.25);
   EXPECT_DOUBLE_EQ(k.tangential_displacement.y, 1e-3 * dt);
   EXPECT_DOUBLE_EQ(k.overlap_increment, 0.01 * dt);
   const ContactResponse r = contact_response<false, false, false>(

@@ -1,0 +1,101 @@
+// A stable time step for every spring-dashpot of the contact law (docs/contact-model.md,
+// "Time step").
+//
+// Each piece of a contact is an oscillator: a spring k and a dashpot c acting on an effective
+// inertia m (symbols below). grainlab integrates it with velocity Verlet, the dashpot reading the
+// end-of-step velocity estimate v(t + dt/2) + dt/2 F(t)/m. For one such oscillator the scheme is
+// stable only while
+//     omega dt <= 2 (sqrt(1 + 4 zeta^2) - 2 zeta),   omega = sqrt(k/m), zeta = c / (2 sqrt(k m)),
+// (the spectral radius of the step's amplification matrix reaches 1 there; for zeta = 0 it is the
+// familiar omega dt = 2, for a strong dashpot it tends to dt = m/c). Above it the oscillation
+// grows: a heavily damped tangential or rolling spring then creeps, e.g. a sphere slides down a
+// slope it should rest on. grainlab keeps dt <= stability_margin * dt_crit for every piece in use:
+// half the single-contact limit, for the several contacts a particle carries.
+//
+//   piece         k                 c                 m (effective inertia)
+//   normal        k_n               c_n               m* = m_a m_b / (m_a + m_b)
+//   sliding       k_s = RNS k_n     c_s = RZS c_n     m_t: 1/m_t = sum over bodies of 1/m + r^2/I
+//                                                     (= 2/7 m* for solid spheres)
+//   rolling       k_theta           c_theta           I* = I_a I_b / (I_a + I_b)
+//   twisting      k_theta           c_theta           I*
+//   rolling force k_r = ratio k_n   none              m_t
+// (a wall is a body of infinite mass and inertia; radii and masses are those of the smallest
+// particles of each material).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "contact/pair_table.hpp"
+
+namespace grainlab {
+
+inline constexpr double stability_margin = 0.5;
+
+// Critical step of one spring-dashpot under grainlab's integrator, s.
+inline double critical_time_step(double stiffness, double damping, double mass) {
+  const double omega = std::sqrt(stiffness / mass);
+  const double zeta = damping / (2.0 * std::sqrt(stiffness * mass));
+  return 2.0 * (std::sqrt(1.0 + 4.0 * zeta * zeta) - 2.0 * zeta) / omega;
+}
+
+struct SpringDashpot {
+  std::string piece;    // "normal", "sliding", "rolling", "twisting", "rolling force"
+  std::string key;      // the [[pair]] key that sets its damping (empty when none does)
+  double stiffness;     // N/m or N m/rad
+  double damping;       // N s/m or N m s/rad
+  double mass;          // kg or kg m^2
+  double damping_ratio;
+  double critical_step;  // s
+};
+
+// The body on each side of a contact: a sphere (radius, density) or a wall (radius 0).
+struct ContactBody {
+  double radius = 0.0;   // m; 0 for a wall
+  double density = 0.0;  // kg/m^3
+  bool is_wall() const { return radius == 0.0; }
+};
+
+// The spring-dashpots a pair switches on, each with its critical step.
+std::vector<SpringDashpot> spring_dashpots(const PairParams& pair, const ContactBody& a,
+                                           const ContactBody& b);
+
+// The most restrictive of them: the largest step allowed (stability_margin * dt_crit) and which
+// piece sets it.
+struct StepLimit {
+  double time_step = INFINITY;  // s
+  SpringDashpot limiting{};     // the piece with the smallest critical step
+};
+StepLimit step_limit(const std::vector<SpringDashpot>& pieces);
+
+// The step limit over every defined pair of one particle material (radius, density) with every
+// material of the table (wall materials have no density). `description` names the pair and the
+// piece that set it, e.g. "the sliding dashpot of glass-rubber (zeta 3.1, [[pair]] rzs)".
+struct MaterialStepLimit {
+  double time_step = INFINITY;
+  std::string description;
+};
+MaterialStepLimit material_step_limit(const PairTable& table, int particle_material,
+                                      double radius);
+
+std::string describe(const SpringDashpot& piece, const std::string& pair_name);
+
+}  // namespace grainlab
+
+namespace grainlab {
+
+// The one time-step rule: the step wanted (dt_fraction * t_c), lowered where a spring-dashpot of
+// the particle material's pairs needs a smaller one to stay stable.
+struct TimeStepChoiceForMaterial {
+  double time_step = 0.0;  // s
+  std::string limited_by;  // empty when dt_fraction * t_c was kept
+};
+inline TimeStepChoiceForMaterial stable_time_step(double wanted, const PairTable& table,
+                                                  int particle_material, double min_radius) {
+  const MaterialStepLimit limit = material_step_limit(table, particle_material, min_radius);
+  if (wanted <= limit.time_step) return {wanted, {}};
+  return {limit.time_step, limit.description};
+}
+
+}  // namespace grainlab
