@@ -55,18 +55,20 @@ inline void set_relative_velocity(ContactKinematics& k, const Vec3& velocity_a,
 
 // The step's relative displacement at the contact point from the half-step velocities (the ones
 // the drift used): the increments of the spring histories. For the midpoint rule the levers are
-// those at mid-step: lever + lever_growth * (U_n(end) - U_n(mid)), with lever_growth 1/4 for each
-// sphere of a pair (lever r - U_n/2) and 1/2 for a sphere on a wall (lever r - U_n). With the
-// end-of-step levers the increment is off by dt w dU_n/2 each step, a drift of the spring.
+// those at mid-step: lever + lever_shrink * (U_n(end) - U_n(mid)), where lever_shrink is how much
+// a lever shortens per unit of overlap: 1/2 for each sphere of a pair (lever r - U_n/2), 1 for a
+// sphere on a wall (lever r - U_n). With the end-of-step levers the increment is off by
+// dt w dU_n/2 each step, a drift of the spring. The normal is the end-of-step one (the history
+// lives in its tangent plane); its turn over half a step is left out.
 inline void set_step_displacement(ContactKinematics& k, double dt, const Vec3& velocity_a,
                                   const Vec3& angular_velocity_a, double lever_a,
                                   const Vec3& velocity_b, const Vec3& angular_velocity_b,
-                                  double lever_b, double lever_growth) {
+                                  double lever_b, double lever_shrink) {
   const Vec3& n = k.normal;
   // the spin terms (w x n) have no normal component
   const double normal_speed = dot(velocity_b - velocity_a, n);
   k.overlap_increment = -dt * normal_speed;
-  const double shift = lever_growth * 0.5 * k.overlap_increment;
+  const double shift = lever_shrink * 0.5 * k.overlap_increment;
   const Vec3 relative = velocity_b - velocity_a -
                         cross((lever_b + shift) * angular_velocity_b +
                                   (lever_a + shift) * angular_velocity_a,

@@ -58,11 +58,14 @@ std::vector<SpringDashpot> spring_dashpots(const PairParams& pair, const Contact
 
 StepLimit step_limit(const std::vector<SpringDashpot>& pieces) {
   StepLimit limit;
-  for (const SpringDashpot& p : pieces)
-    if (stability_margin * p.critical_step < limit.time_step) {
-      limit.time_step = stability_margin * p.critical_step;
+  for (const SpringDashpot& p : pieces) {
+    const double allowed = critical_time_step(contacts_in_parallel * p.stiffness,
+                                              contacts_in_parallel * p.damping, p.mass);
+    if (allowed < limit.time_step) {
+      limit.time_step = allowed;
       limit.limiting = p;
     }
+  }
   return limit;
 }
 

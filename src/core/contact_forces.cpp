@@ -25,8 +25,12 @@ inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
   return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
 }
 
+// dt: the time step (for the end-of-step velocity estimate); drift: the time the positions last
+// drifted over, dt after a drift and 0 when forces are evaluated on a fresh state (at
+// construction), when no spring may advance and no contact can have begun "during" a step.
 template <bool R, bool T, bool RF>
-double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt) {
+double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt,
+                   double drift) {
   const long n = static_cast<long>(p.size());
   const int materials = table.material_count();
   const PairParams* params = &table(0, 0);
@@ -58,8 +62,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-      set_step_displacement(k, dt, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
-                            p.angular_velocity[j], lever_j, 0.25);
+      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i,
+                            p.velocity[j], p.angular_velocity[j], lever_j, 0.5);
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
                             velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
       double inertia = 0.0, contact_radius = 0.0;
@@ -71,12 +75,18 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
       // A contact whose overlap is no more than twice the step's growth may have begun in this
-      // step: undo the drift (exactly: positions moved by dt v) to find the overlap before it.
+      // step: undo the drift (exactly: positions moved by drift v) to find the overlap before it.
+      // The growth is the normal increment plus the curvature term |s_t|^2 / (2 D) of the
+      // relative drift s (sideways motion also closes the distance).
       double touch_fraction = 0.0;
-      if (k.overlap <= 2.0 * k.overlap_increment) {
-        touch_fraction = first_touch_fraction(
-            reach - norm(d - dt * (p.velocity[j] - p.velocity[i])), k.overlap);
-        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+      if (drift > 0.0) {
+        const Vec3 s = drift * (p.velocity[j] - p.velocity[i]);
+        const double s_n = dot(s, k.normal);
+        const double curvature = (norm2(s) - s_n * s_n) / (2.0 * dist);
+        if (k.overlap <= 2.0 * (k.overlap_increment + curvature)) {
+          touch_fraction = first_touch_fraction(reach - norm(d - s), k.overlap);
+          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+        }
       }
       const PairParams& pair = row_params[p.material[j]];
       const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
@@ -96,7 +106,7 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 
 template <bool R, bool T, bool RF>
 double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const PairTable& table,
-                   WallContacts& c, double dt) {
+                   WallContacts& c, double dt, double drift) {
   const long n = static_cast<long>(p.size());
   double max_fraction = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
@@ -125,10 +135,14 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       k.effective_radius = r;
       k.effective_mass = 1.0 / inverse_mass_sum;
       const double lever = g.gap;  // contact point on the wall surface
-      set_step_displacement(k, dt, p.velocity[i], p.angular_velocity[i], lever, w.velocity, Vec3{},
-                            0.0, 0.5);
+      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever, w.velocity,
+                            Vec3{}, 0.0, 1.0);
+      // A wall with mass is integrated like a particle: its velocity too is a half-step one here.
+      const Vec3 wall_velocity_at_step_end =
+          w.mass > 0.0 ? w.velocity + (0.5 * dt / w.mass) * (w.force + w.external_force)
+                       : w.velocity;
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
-                            w.velocity, Vec3{}, 0.0);
+                            wall_velocity_at_step_end, Vec3{}, 0.0);
       double inertia = 0.0, contact_radius = 0.0;
       if constexpr (R || T) {
         inertia = p.inverse_inertia[i] > 0.0 ? 1.0 / p.inverse_inertia[i] : 0.0;
@@ -138,11 +152,20 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
                           T ? &c.twisting_angle[e] : nullptr,
                           RF ? &c.rolling_force_displacement[e] : nullptr};
       const PairParams& pair = table(p.material[i], w.material);
-      // First touch in this step (see the pair loop); the gap to a flat wall is linear in the
-      // positions, so undoing the drift subtracts the step's overlap increment.
+      // First touch in this step (see the pair loop): the gap before the drift, with the wall
+      // and the particle moved back (exact for any wall shape). The gate allows for rectangle
+      // edges and cylinders, where the gap is not linear in the positions: sideways drift s_t
+      // changes it by at most |s_t|^2 / (2 gap).
       double touch_fraction = 0.0;
-      if (overlap <= 2.0 * k.overlap_increment) {
-        touch_fraction = first_touch_fraction(overlap - k.overlap_increment, overlap);
+      const Vec3 s = drift * (p.velocity[i] - w.velocity);
+      const double s_n = dot(s, g.normal);
+      if (drift > 0.0 &&
+          overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
+        Wall before = w;
+        before.point -= drift * w.velocity;
+        const double overlap_before =
+            r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
+        touch_fraction = first_touch_fraction(overlap_before, overlap);
         if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
       }
       const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
@@ -187,15 +210,16 @@ double dispatch(ContactPieces pieces, Args&&... args) {
 
 template <bool R, bool T, bool RF>
 struct PairKernel {
-  static double run(const ParticleStore& p, const PairTable& t, PairContacts& c, double dt) {
-    return pair_forces<R, T, RF>(p, t, c, dt);
+  static double run(const ParticleStore& p, const PairTable& t, PairContacts& c, double dt,
+                    double drift) {
+    return pair_forces<R, T, RF>(p, t, c, dt, drift);
   }
 };
 template <bool R, bool T, bool RF>
 struct WallKernel {
   static double run(const ParticleStore& p, const std::vector<Wall>& w, const PairTable& t,
-                    WallContacts& c, double dt) {
-    return wall_forces<R, T, RF>(p, w, t, c, dt);
+                    WallContacts& c, double dt, double drift) {
+    return wall_forces<R, T, RF>(p, w, t, c, dt, drift);
   }
 };
 
@@ -219,15 +243,15 @@ void Simulation::refresh_contact_constants() {
     }
 }
 
-void Simulation::compute_pair_forces() {
+void Simulation::compute_pair_forces(double drift) {
   max_overlap_fraction_ =
-      dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step);
+      dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift);
 }
 
-void Simulation::compute_wall_forces() {
-  max_overlap_fraction_ =
-      std::max(max_overlap_fraction_, dispatch<WallKernel>(pieces_, particles_, walls_, table_,
-                                                           wall_contacts_, settings_.time_step));
+void Simulation::compute_wall_forces(double drift) {
+  max_overlap_fraction_ = std::max(
+      max_overlap_fraction_, dispatch<WallKernel>(pieces_, particles_, walls_, table_,
+                                                  wall_contacts_, settings_.time_step, drift));
 }
 
 }  // namespace grainlab

@@ -18,7 +18,7 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time step must be > 0");
   if (!(settings_.skin > 0.0)) throw std::invalid_argument("Verlet skin must be > 0");
   rebuild_neighbors();
-  compute_forces();
+  compute_forces(0.0);
 }
 
 void Simulation::rebuild_neighbors() {
@@ -29,7 +29,7 @@ void Simulation::rebuild_neighbors() {
 void Simulation::step() {
   kick_and_drift();
   if (neighbors_.needs_rebuild(particles_, walls_)) rebuild_neighbors();
-  compute_forces();
+  compute_forces(settings_.time_step);
   half_kick();
   time_ += settings_.time_step;
   ++step_count_;
@@ -72,9 +72,9 @@ void Simulation::half_kick() {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
 
-void Simulation::compute_forces() {
-  compute_pair_forces();
-  compute_wall_forces();
+void Simulation::compute_forces(double drift) {
+  compute_pair_forces(drift);
+  compute_wall_forces(drift);
   gather();
 }
 

@@ -70,11 +70,13 @@ class Simulation {
  private:
   void kick_and_drift();
   void half_kick();
-  void compute_forces();
-  void compute_pair_forces();
+  // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
+  // the first evaluation of a fresh state, when no contact spring may advance).
+  void compute_forces(double drift);
+  void compute_pair_forces(double drift);
   void rebuild_neighbors();
   void refresh_contact_constants();
-  void compute_wall_forces();
+  void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
 

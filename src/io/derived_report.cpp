@@ -82,7 +82,7 @@ std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const Time
   }
   out += fmt::format(
       "\ncollision duration t_c (Eq. 11, smallest over the pairs) = {:.4e} s\n"
-      "stable step (half the smallest critical step, {}) = {:.4e} s\n"
+      "stable step ({}, held by four such contacts) = {:.4e} s\n"
       "time step dt = {:.4e} s = {:.3g} t_c{}\n"
       "zeta_Eq7: textbook damping ratio -ln e / sqrt(pi^2 + ln^2 e); zeta: the ratio grainlab "
       "uses,\n"

@@ -39,10 +39,12 @@ constexpr const char* column_names[column_count] = {"id", "material", "radius", 
 
 std::vector<ParticleEntry> read_packing_csv(const std::string& path,
                                             const std::vector<Material>& materials,
-                                            int default_material, bool fixed) {
+                                            int default_material, bool fixed,
+                                            const std::string& named_by) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: cannot read the packing file", path));
-  auto fail = [&](int line, const std::string& what) -> ConfigError {
+  if (!in)
+    throw ConfigError(fmt::format("{}: cannot read the packing file {}", named_by, path));
+  auto fail = [&](long line, const std::string& what) -> ConfigError {
     return ConfigError(fmt::format("{} line {}: {}", path, line, what));
   };
 
@@ -51,15 +53,19 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
   std::vector<ParticleEntry> rows;
   std::vector<long> ids;
   std::string text;
-  int line = 0;
+  long line = 0;
   bool have_header = false;
   while (std::getline(in, text)) {
     ++line;
-    const std::string_view content = trim(text);
+    std::string_view content = trim(text);
+    if (line == 1 && content.substr(0, 3) == "\xEF\xBB\xBF") content = trim(content.substr(3));
     if (content.empty() || content.front() == '#') continue;
     const std::vector<std::string_view> fields = split(content);
     if (!have_header) {
       for (size_t k = 0; k < fields.size(); ++k) {
+        if (fields[k].empty())
+          throw fail(line, fmt::format("column {} of the header has no name (a trailing comma?)",
+                                       k + 1));
         const auto* known = std::find(std::begin(column_names), std::end(column_names), fields[k]);
         if (known == std::end(column_names))
           throw fail(line, fmt::format("unknown column '{}' (known: id, material, radius, x, y, z, "
@@ -85,7 +91,8 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
                                    fields.size()));
     auto number = [&](Column c, double fallback) {
       if (!where[c]) return fallback;
-      const std::string_view cell = fields[*where[c]];
+      std::string_view cell = fields[*where[c]];
+      if (!cell.empty() && cell.front() == '+') cell.remove_prefix(1);
       double v = 0.0;
       const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
       if (error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v))
@@ -130,13 +137,17 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
     }
     rows.push_back(p);
   }
-  if (!have_header) throw ConfigError(fmt::format("{}: no header line (radius, x, y, z, ...)", path));
-  if (rows.empty()) throw ConfigError(fmt::format("{}: no particles after the header", path));
+  if (!have_header)
+    throw ConfigError(fmt::format("{} (named by {}): no header line (radius, x, y, z, ...)", path,
+                                  named_by));
+  if (rows.empty())
+    throw ConfigError(
+        fmt::format("{} (named by {}): no particles after the header", path, named_by));
   if (!where[id]) return rows;
 
   // With ids: a permutation of 0 .. N-1, and the particles in id order.
   std::vector<ParticleEntry> ordered(rows.size());
-  std::vector<int> seen_on(rows.size(), 0);
+  std::vector<long> seen_on(rows.size(), 0);
   for (size_t k = 0; k < rows.size(); ++k) {
     const long v = ids[k];
     if (v >= static_cast<long>(rows.size()))

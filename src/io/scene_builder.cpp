@@ -52,7 +52,7 @@ ParticleStore build_particles(const SceneConfig& c) {
     for (const Sphere& s : spheres) largest = std::max(largest, s.radius);
     SphereGrid grid(2.0 * largest);
     for (size_t i = 0; i < explicit_count; ++i) {
-      grid.for_each_near(spheres[i], [&](uint32_t j) {
+      grid.find_near(spheres[i], [&](uint32_t j) {
         const double gap = norm(spheres[i].centre - spheres[j].centre) - spheres[i].radius -
                            spheres[j].radius;
         if (-gap > 0.01 * std::min(spheres[i].radius, spheres[j].radius))
@@ -60,6 +60,7 @@ ParticleStore build_particles(const SceneConfig& c) {
               "{}: particle[{}] overlaps particle[{}] ({}) by {:.3g} m, more than 1 % of the "
               "smaller radius: move them apart",
               where(i), i + 1, j + 1, where(j), -gap));
+        return false;
       });
       grid.add(spheres[i], static_cast<uint32_t>(i));
     }
@@ -90,9 +91,9 @@ ParticleStore build_particles(const SceneConfig& c) {
     for (size_t w = 0; w < c.walls.size(); ++w)
       if (!inside_wall(c.walls[w], spheres[i].centre))
         throw ConfigError(fmt::format(
-            "{}: particle {} at ({:.4g}, {:.4g}, {:.4g}) m lies outside wall[{}] '{}' ({} line "
+            "{}: particle[{}] at ({:.4g}, {:.4g}, {:.4g}) m lies outside wall[{}] '{}' ({} line "
             "{}): particles must be on the side the wall's normal points to (inside a cylinder)",
-            where(i), i, spheres[i].centre.x, spheres[i].centre.y, spheres[i].centre.z, w + 1,
+            where(i), i + 1, spheres[i].centre.x, spheres[i].centre.y, spheres[i].centre.z, w + 1,
             c.walls[w].name, c.file, c.wall_lines[w]));
 
   ParticleStore store;
@@ -182,6 +183,7 @@ std::vector<DerivedPair> derive_pairs(const SceneConfig& c, const PairTable& tab
       if (!can_touch && !table(a, b).defined) continue;
       if (can_touch) require(a, b);
       out.push_back(derive(c, table, a, b, min_radius[a], min_radius[b], false));
+      out.back().can_touch = can_touch;
     }
     std::vector<bool> seen(m, false);
     for (const Wall& w : c.walls) {
@@ -199,10 +201,11 @@ TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedP
   t.collision_duration = INFINITY;
   for (const DerivedPair& p : pairs) {
     t.collision_duration = std::min(t.collision_duration, p.collision_duration);
-    if (p.step_limit.time_step < t.stable_limit) {
+    if (p.can_touch && p.step_limit.time_step < t.stable_limit) {
       t.stable_limit = p.step_limit.time_step;
       t.stable_limit_set_by =
           describe(p.step_limit.limiting, p.material_a + "-" + p.material_b);
+      t.stable_limit_damped = p.step_limit.limiting.damping_ratio > 0.0;
     }
   }
   if (c.time_step) {
@@ -211,9 +214,10 @@ TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedP
     t.dt_fraction = std::isfinite(t.collision_duration) ? t.time_step / t.collision_duration : 0.0;
     if (t.time_step > t.stable_limit)
       throw ConfigError(fmt::format(
-          "{}: simulation.dt = {:.4g} s is above the stable step {:.4g} s of {} (half its "
-          "critical step; docs/contact-model.md): lower simulation.dt, or lower the damping",
-          c.file, t.time_step, t.stable_limit, t.stable_limit_set_by));
+          "{} line {}: simulation.dt: {:.4g} s is above the stable step {:.4g} s of {} (held by "
+          "four such contacts, as in a packing; docs/contact-model.md): lower simulation.dt{}",
+          c.file, c.time_step_line, t.time_step, t.stable_limit, t.stable_limit_set_by,
+          t.stable_limit_damped ? ", or the damping" : ""));
   } else {
     if (!std::isfinite(t.collision_duration))
       throw ConfigError(

@@ -31,8 +31,9 @@ struct DerivedPair {
   double restitution = 0.0, friction = 0.0, arf = 0.0;
   double rolling_moment_per_force_at_half_percent = 0.0;  // mu_theta at U_n = 0.5 % of r*, m
   double collision_duration = 0.0;                        // s, Eq. 11 (textbook damping)
+  bool can_touch = true;                       // false: a one-bead material's own pair
   std::vector<SpringDashpot> spring_dashpots;  // every piece in use, with its critical step
-  StepLimit step_limit;                        // stability_margin * the smallest critical step
+  StepLimit step_limit;                        // the stable step of its most restrictive piece
 };
 
 struct TimeStepChoice {
@@ -42,7 +43,8 @@ struct TimeStepChoice {
   bool explicit_dt = false;
   double stable_limit = INFINITY;  // largest step every spring-dashpot in use allows, s
   std::string limited_by;          // set when the stable limit lowered dt_fraction * t_c
-  std::string stable_limit_set_by; // the piece that sets stable_limit
+  std::string stable_limit_set_by;  // the piece that sets stable_limit
+  bool stable_limit_damped = false;  // that piece has a dashpot (lowering it helps)
 };
 
 PairTable build_pair_table(const SceneConfig& config);

@@ -41,6 +41,7 @@ void read_simulation(const toml::table& root, SceneConfig& c) {
   c.duration = r.number("duration", Quantity::time);
   if (!(c.duration > 0.0)) r.fail("duration", "expected a duration > 0 s");
   c.time_step = r.optional_number("dt", Quantity::time);
+  if (c.time_step) c.time_step_line = r.line_of("dt");
   if (c.time_step && !(*c.time_step > 0.0)) r.fail("dt", "expected a time step > 0 s");
   if (c.time_step && r.has("dt_fraction")) r.fail("dt", "give either dt or dt_fraction, not both");
   c.dt_fraction = r.number_or("dt_fraction", Quantity::dimensionless, 0.1);
@@ -171,8 +172,9 @@ void read_particles(const toml::table& root, SceneConfig& c) {
         }
         const bool fixed = r.boolean_or("fixed", false);
         r.finish();  // count, region, diameter... belong to random batches, not to a file
-        std::vector<ParticleEntry> rows =
-            read_packing_csv(path, c.materials, default_material, fixed);
+        std::vector<ParticleEntry> rows = read_packing_csv(
+            path, c.materials, default_material, fixed,
+            fmt::format("{} line {}: particles[{}].file", c.file, r.line_of("file"), k + 1));
         const int source = static_cast<int>(c.packing_files.size());
         c.packing_files.push_back(path);
         for (ParticleEntry& p : rows) p.source = source;

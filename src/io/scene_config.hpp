@@ -57,6 +57,7 @@ struct SceneConfig {
   std::string file;
   double duration = 0.0;            // s
   std::optional<double> time_step;  // s, explicit dt
+  int time_step_line = 0;           // line of simulation.dt
   double dt_fraction = 0.1;         // dt = dt_fraction * t_c
   Vec3 gravity;                     // m/s^2
   uint64_t seed = 1;

@@ -57,11 +57,12 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   const double t_c = collision_duration(r, bead_density, pair.youngs_modulus, pair.restitution);
   SimulationSettings settings;
   settings.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r).time_step;
-  settings.dt_fraction = s.dt_fraction;
+  settings.dt_fraction = settings.time_step / t_c;
   settings.gravity = {0.0, 0.0, -g};
   settings.skin = 0.2 * r;
   Simulation sim(std::move(p), walls, table, settings);
   out.time_step = settings.time_step;
+  out.dt_fraction = settings.dt_fraction;
 
   auto bead_index = [&] { return sim.particles().id[0] == 0 ? size_t{0} : size_t{1}; };
   auto bottom_height = [&] {  // lowest point of the thrown bead above the target surface
@@ -167,7 +168,7 @@ void run_flat_throw(const std::string& path, const toml::table& root, const RunO
   j["restitution_error"] = r.restitution_simulated - r.restitution_input;
   j["contact_duration_s"] = r.contact_duration;
   j["time_step_s"] = r.time_step;
-  j["dt_fraction"] = s.dt_fraction;
+  j["dt_fraction"] = r.dt_fraction;
   j["trajectory_note"] = "trajectory.csv: bead centre, target surface at z = 0 (use --plate-z 0)";
   write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
   if (!options.quiet)

@@ -33,6 +33,7 @@ struct FlatThrowResult {
   double launch_height = 0.0, rebound_height = 0.0;  // H, h (m)
   double contact_duration = 0.0;                     // s
   double time_step = 0.0;                            // s
+  double dt_fraction = 0.0;                          // time_step / t_c of the bead-target pair
   long contact_steps = 0;
   struct Frame {
     double t, x, z;  // bead centre; target surface at z = 0

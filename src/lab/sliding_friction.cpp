@@ -37,12 +37,9 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
   const double r_min = 0.5 * s.diameter * 0.99;
   const PairParams& pp = table(bead, bead);
   SimulationSettings out;
-  out.time_step =
-      stable_time_step(
-          s.dt_fraction * collision_duration(r_min, density, pp.youngs_modulus, pp.restitution),
-          table, bead, r_min)
-          .time_step;
-  out.dt_fraction = s.dt_fraction;
+  const double t_c = collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
+  out.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r_min).time_step;
+  out.dt_fraction = out.time_step / t_c;  // below s.dt_fraction if stability lowered it
   out.gravity = {0.0, 0.0, -s.gravity};
   out.skin = 0.1 * s.diameter;
   return out;

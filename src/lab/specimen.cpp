@@ -133,20 +133,24 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
 
   const double r_min = 0.5 * (s.diameter - s.diameter_tolerance);
   const PairParams& glass = original(s.bead_material, s.bead_material);
-  SimulationSettings settings;
-  settings.time_step =
-      stable_time_step(s.dt_fraction * collision_duration(r_min, s.density, glass.youngs_modulus,
-                                                          glass.restitution),
-                       original, s.bead_material, r_min)
-          .time_step;
-  settings.dt_fraction = s.dt_fraction;
-  settings.skin = 0.1 * s.diameter;
   // Steering: compact frictionless until the target solid fraction is reached, then switch the
   // measured friction on so the packing locks in; without a target, the particles' own friction.
   out.compaction_friction = s.target_solid_fraction ? 0.0 : glass.friction;
   out.compaction_restitution = std::min(s.compaction_restitution, glass.restitution);
   set_compaction_contacts(table, original, s, s.target_solid_fraction ? 0.0 : -1.0,
                           s.compaction_restitution);
+  // The step must be stable for the compaction contacts (more damped) and the measured ones
+  // (restored at the end), by the one rule of contact/stability.hpp.
+  SimulationSettings settings;
+  const double t_c = collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
+  PairTable measured_friction = table;
+  set_compaction_contacts(measured_friction, original, s, -1.0, s.compaction_restitution);
+  settings.time_step = std::min(
+      {stable_time_step(s.dt_fraction * t_c, original, s.bead_material, r_min).time_step,
+       stable_time_step(s.dt_fraction * t_c, table, s.bead_material, r_min).time_step,
+       stable_time_step(s.dt_fraction * t_c, measured_friction, s.bead_material, r_min).time_step});
+  settings.dt_fraction = settings.time_step / t_c;  // below s.dt_fraction if stability lowered it
+  settings.skin = 0.1 * s.diameter;
   Simulation sim(std::move(particles),
                  cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);

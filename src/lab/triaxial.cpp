@@ -168,7 +168,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
       sp.dt_fraction * collision_duration_of_beads, c.table, sp.bead_material, r_min);
   const std::string time_step_limited_by = step.limited_by;
   settings.time_step = step.time_step;
-  settings.dt_fraction = sp.dt_fraction;
+  settings.dt_fraction = settings.time_step / collision_duration_of_beads;
   settings.skin = 0.1 * sp.diameter;
   ShearRun run{
       Simulation(specimen.particles,
@@ -232,7 +232,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   j["specimen"]["source"] =
       s.specimen_file ? *s.specimen_file : std::string("prepared in this run");
   j["time_step_s"] = dt;
-  j["dt_fraction"] = sp.dt_fraction;
+  j["dt_fraction"] = dt / collision_duration_of_beads;
   j["collision_duration_s"] = collision_duration_of_beads;
   j["time_step_limited_by"] = time_step_limited_by;
   j["loading"] = {{"platen_speed_m_per_s", p.platen_speed},

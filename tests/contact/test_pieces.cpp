@@ -95,6 +95,57 @@ TEST(RollingForcePiece, ResistsRollingDisplacement) {
   EXPECT_DOUBLE_EQ(f.x, 100.0 * 0.005);
 }
 
+TEST(Kinematics, StepDisplacementUsesMidStepLevers) {
+  // Sphere A spinning about y above a wall (n = -z from A to the wall), approaching it: over the
+  // step the overlap grows by dU = 1e-8 m, so the lever r - U_n is dU/2 longer at mid-step than
+  // at the end; the tangential displacement of the contact point is dt (v_x - lever_mid w_y).
+  ContactKinematics k;
+  k.normal = {0, 0, -1};
+  const double dt = 1e-7, lever_end = 1e-3 - 2e-8, w = 100.0, v_n = 0.1;
+  set_step_displacement(k, dt, {0.01, 0, -v_n}, {0, w, 0}, lever_end, {}, {}, 0.0, 1.0);
+  const double d_u = v_n * dt;
+  EXPECT_DOUBLE_EQ(k.overlap_increment, d_u);
+  const double lever_mid = lever_end + 0.5 * d_u;
+  // B's surface relative to A's: -(v_a + lever w_a x n); w x n = (0, w, 0) x (0, 0, -1) = (-w, 0, 0)
+  EXPECT_NEAR(k.tangential_displacement.x, -dt * (0.01 - lever_mid * w), 1e-22);
+  EXPECT_DOUBLE_EQ(k.tangential_displacement.z, 0.0);
+  // a pair: each lever r - U_n/2 grows by dU/4 at mid-step
+  ContactKinematics q;
+  q.normal = {1, 0, 0};
+  set_step_displacement(q, dt, {v_n, 0, 0}, {0, 0, w}, lever_end, {}, {0, 0, w}, lever_end, 0.5);
+  EXPECT_NEAR(q.tangential_displacement.y, -dt * 2.0 * (lever_end + 0.25 * d_u) * w, 1e-22);
+}
+
+TEST(FirstTouch, FractionOfTheStepInContact) {
+  EXPECT_DOUBLE_EQ(first_touch_fraction(-3e-9, 1e-9), 0.25);  // touched 3/4 into the step
+  EXPECT_DOUBLE_EQ(first_touch_fraction(0.0, 1e-9), 1.0);     // at the step's start
+  EXPECT_DOUBLE_EQ(first_touch_fraction(2e-9, 3e-9), 0.0);    // touching before the step
+  EXPECT_DOUBLE_EQ(first_touch_fraction(-1e-9, -0.5e-9), 0.0);  // separating, not touching
+}
+
+TEST(FirstTouch, ChargesTheDashpotJumpOverThePartInContact) {
+  // A pair touching half-way through the step (f = 1/2) is charged exactly what velocity Verlet
+  // charges (the correction 0.5 (2f - 1) F_touch vanishes); touching at the start (f = 1) it gets
+  // F_touch / 2 more, touching at the very end (f -> 0) F_touch / 2 less.
+  PairParams pair;
+  pair.stiffness_per_radius = 1e8;
+  pair.damping_ratio = 0.2;
+  pair.rns = 0.5;
+  pair.friction = 0.3;
+  ContactKinematics k;
+  k.normal = {1, 0, 0};
+  k.overlap = 1e-9;
+  k.overlap_rate = 0.5;
+  const NormalParams normal{5e4, 0.1};
+  const double f_touch = normal.damping * k.overlap_rate;  // c_n dU/dt at zero overlap
+  for (auto [fraction, extra] :
+       {std::pair{0.5, 0.0}, std::pair{1.0, 0.5 * f_touch}, std::pair{0.0, -0.5 * f_touch}}) {
+    ContactResponse r{};
+    charge_first_touch<false, false, false>(pair, normal, k, fraction, 1e-3, 1e-3, 0.0, r);
+    EXPECT_NEAR(r.force_on_a.x, -extra, 1e-15) << fraction;  // A is pushed along -n
+  }
+}
+
 TEST(ContactLaw, HeadOnPairForceAndTorques) {
   // Two spheres touching along x with overlap 1e-5 m, B sliding in +y relative to A.
   PairParams pair;

@@ -341,6 +341,138 @@ def params_shows_reference_constants():
         assert r.returncode == 0 and "7.2571e+07" in r.stdout and "zeta" in r.stdout, r.stdout
 
 
+# --- packings read from CSV ([[particles]] file = ...) ----------------------------------------
+
+# BASE's materials and pairs, a packing file instead of its particles, and its plate
+MATERIALS_AND_PAIRS = BASE[BASE.index("[[material]]"):BASE.index("[[particle]]")]
+PACKED = """
+[simulation]
+duration = 2e-5
+gravity = [0.0, 0.0, -9.81]
+
+""" + MATERIALS_AND_PAIRS + """[[particles]]
+file = "packing.csv"
+material = "glass"
+
+[[wall]]
+type = "plane"
+material = "steel"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"""
+
+# a 4 x 4 x 3 cubic stack of 2 mm beads, 1 % apart, resting just above the plate
+LATTICE = "# a small stack\nradius,x,y,z\n" + "".join(
+    f"1e-3,{i * 2.02e-3},{j * 2.02e-3},{1.001e-3 + k * 2.02e-3}\n"
+    for k in range(3) for j in range(4) for i in range(4))
+
+
+def run_packed(d, csv_text, toml_text=PACKED, args=("--quiet",), out_name="out"):
+    with open(os.path.join(d, "scene.toml"), "w") as f:
+        f.write(toml_text)
+    with open(os.path.join(d, "packing.csv"), "w") as f:
+        f.write(csv_text)
+    out = os.path.join(d, out_name)
+    return run(["run", "scene.toml", "--out", out, *args], d), out
+
+
+def expect_bad_packing(csv_text, *fragments, toml_text=PACKED):
+    with tempfile.TemporaryDirectory() as d:
+        r, out = run_packed(d, csv_text, toml_text)
+        assert r.returncode == 2, f"exit code {r.returncode}, expected 2; stderr: {r.stderr}"
+        for frag in fragments:
+            assert frag in r.stderr, f"message lacks {frag!r}: {r.stderr}"
+        assert not os.path.exists(out), "nothing may be written for bad input"
+        print("refused as expected:", r.stderr.strip())
+
+
+@check
+def packing_file_runs_and_reads_back():
+    with tempfile.TemporaryDirectory() as d:
+        r, out = run_packed(d, LATTICE)
+        assert r.returncode == 0, r.stderr
+        final = open(os.path.join(out, "final.csv")).read()
+        assert len(final.splitlines()) == 1 + 48
+        # grainlab's own final.csv (id, material index, velocities) is a packing file too
+        r2, out2 = run_packed(d, final, PACKED.replace('material = "glass"\n\n[[wall]]', "\n[[wall]]"),
+                              out_name="out2")
+        assert r2.returncode == 0, r2.stderr
+        trace = open(os.path.join(out2, "trace.csv")).read().splitlines()
+        first = {line.split(",")[1]: line.split(",")[2:8] for line in trace[1:49]}
+        for row in final.splitlines()[1:]:
+            f = row.split(",")
+            assert [float(v) for v in first[f[0]]] == [float(v) for v in f[3:9]], (f, first[f[0]])
+
+
+@check
+def packing_file_bad_number():
+    bad = LATTICE.replace("1e-3,0.00202,0.0,0.001001", "1e-3,0.00202,zero,0.001001")
+    expect_bad_packing(bad, "packing.csv line 4", "column 'y'", "not a finite number")
+
+
+@check
+def packing_file_wrong_field_count():
+    expect_bad_packing(LATTICE + "1e-3,0.1,0.1\n", "packing.csv line 51", "expected 4 fields")
+
+
+@check
+def packing_file_unknown_and_missing_columns():
+    expect_bad_packing(LATTICE.replace("radius,x,y,z", "radius,x,y,zz"), "packing.csv line 2",
+                       "unknown column 'zz'")
+    expect_bad_packing(LATTICE.replace("radius,x,y,z", "x,y,z,vx").replace("\n1e-3,", "\n0.0,"),
+                       "packing.csv line 2", "no 'radius' column")
+
+
+@check
+def packing_file_ids_and_materials():
+    rows = "id,material,radius,x,y,z\n0,glass,1e-3,0,0,0.002\n0,glass,1e-3,0.005,0,0.002\n"
+    expect_bad_packing(rows, "packing.csv line 3", "id 0 appears twice (first on line 2)")
+    rows = "id,material,radius,x,y,z\n0,glass,1e-3,0,0,0.002\n1,basalt,1e-3,0.005,0,0.002\n"
+    expect_bad_packing(rows, "packing.csv line 3", "'basalt'")
+    rows = "id,material,radius,x,y,z\n0,steel,1e-3,0,0,0.002\n"
+    expect_bad_packing(rows, "packing.csv line 2", "no density")
+    rows = "id,radius,x,y,z\n5,1e-3,0,0,0.002\n"
+    expect_bad_packing(rows, "packing.csv line 2", "id 5 is out of range")
+
+
+@check
+def packing_file_overlap_and_missing_file():
+    expect_bad_packing(LATTICE + "1e-3,0.0005,0,0.001001\n", "packing.csv line 51",
+                       "overlaps particle[1] (packing.csv line 3)")
+    expect_bad_packing(LATTICE, "scene.toml", "particles[1].count",
+                       toml_text=PACKED.replace('file = "packing.csv"', 'file = "packing.csv"\ncount = 3'))
+    with tempfile.TemporaryDirectory() as d:
+        with open(os.path.join(d, "scene.toml"), "w") as f:
+            f.write(PACKED)
+        r = run(["run", "scene.toml", "--out", "out"], d)
+        assert r.returncode == 2 and "packing.csv" in r.stderr and "cannot read" in r.stderr, r.stderr
+
+
+# --- the stable step of every spring-dashpot (contact/stability.hpp) ---------------------------
+
+DAMPED = PACKED.replace("restitution = 0.8\nfriction = 0.2", "restitution = 0.5\nfriction = 0.2\nrzs = 50")
+
+
+@check
+def damped_pair_lowers_the_step():
+    with tempfile.TemporaryDirectory() as d:
+        r, out = run_packed(d, LATTICE, DAMPED, args=())
+        assert r.returncode == 0, r.stderr
+        assert "dt lowered" in r.stderr and "sliding" in r.stderr and "rzs" in r.stderr, r.stderr
+        s = json.load(open(os.path.join(out, "summary.json")))["derived"]
+        assert s["time_step_limited_by_stability"] is True
+        assert s["time_step_s"] == s["stable_step_s"] < 0.1 * s["collision_duration_s"]
+        r = run(["params", "scene.toml"], d)
+        assert r.returncode == 0 and "lowered below dt_fraction" in r.stdout, r.stdout
+        assert "critical steps: normal" in r.stdout, r.stdout
+
+
+@check
+def explicit_step_above_the_stable_step_is_refused():
+    text = DAMPED.replace("duration = 2e-5", "duration = 2e-5\ndt = 8e-8")
+    expect_bad_packing(LATTICE, "scene.toml", "simulation.dt", "stable step", "rzs", toml_text=text)
+
+
 if __name__ == "__main__":
     CHECKS[sys.argv[2]]()
     print("ok:", sys.argv[2])
