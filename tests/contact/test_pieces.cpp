@@ -116,6 +116,18 @@ TEST(Kinematics, StepDisplacementUsesMidStepLevers) {
   EXPECT_NEAR(q.tangential_displacement.y, -dt * 2.0 * (lever_end + 0.25 * d_u) * w, 1e-22);
 }
 
+namespace {
+// k_n / r* = 1e8 Pa, k_s/k_n = 0.5, mu 0.3
+PairParams pair_with_damping_ratio(double zeta) {
+  PairParams pair;
+  pair.stiffness_per_radius = 1e8;
+  pair.damping_ratio = zeta;
+  pair.rns = 0.5;
+  pair.friction = 0.3;
+  return pair;
+}
+}  // namespace
+
 TEST(FirstTouch, FractionOfTheStepInContact) {
   EXPECT_DOUBLE_EQ(first_touch_fraction(-3e-9, 1e-9), 0.25);  // touched 3/4 into the step
   EXPECT_DOUBLE_EQ(first_touch_fraction(0.0, 1e-9), 1.0);     // at the step's start
@@ -127,11 +139,7 @@ TEST(FirstTouch, ChargesTheDashpotJumpOverThePartInContact) {
   // A pair touching half-way through the step (f = 1/2) is charged exactly what velocity Verlet
   // charges (the correction 0.5 (2f - 1) F_touch vanishes); touching at the start (f = 1) it gets
   // F_touch / 2 more, touching at the very end (f -> 0) F_touch / 2 less.
-  PairParams pair;
-  pair.stiffness_per_radius = 1e8;
-  pair.damping_ratio = 0.2;
-  pair.rns = 0.5;
-  pair.friction = 0.3;
+  const PairParams pair = pair_with_damping_ratio(0.2);
   ContactKinematics k;
   k.normal = {1, 0, 0};
   k.overlap = 1e-9;
@@ -148,11 +156,7 @@ TEST(FirstTouch, ChargesTheDashpotJumpOverThePartInContact) {
 
 TEST(ContactLaw, HeadOnPairForceAndTorques) {
   // Two spheres touching along x with overlap 1e-5 m, B sliding in +y relative to A.
-  PairParams pair;
-  pair.stiffness_per_radius = 1e8;
-  pair.damping_ratio = 0.1;
-  pair.rns = 0.5;
-  pair.friction = 0.3;
+  const PairParams pair = pair_with_damping_ratio(0.1);
   ContactKinematics k;
   k.normal = {1.0, 0.0, 0.0};
   k.overlap = 1e-5;
