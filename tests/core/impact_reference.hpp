@@ -1,5 +1,5 @@
 // An independent reference for single oblique impacts under the linear spring-dashpot law with a
-// Coulomb-capped tangential spring (DESIGN.md sec. 2), written for the tests only: it shares no
+// Coulomb-capped tangential spring (docs/contact-model.md), written for the tests only: it shares no
 // code with grainlab's contact law or integrator.
 //
 // The motion is planar (x-z plane, spins about y), which is the setting of the oblique-impact
