@@ -78,6 +78,9 @@ void set_compaction_contacts(PairTable& table, const PairTable& original, const 
     p.rzs = q.rzs;
     p.arf = q.arf;
     p.rolling_damping_ratio = q.rolling_damping_ratio;
+    p.twisting_friction = q.twisting_friction;
+    p.rolling_force_stiffness_ratio = q.rolling_force_stiffness_ratio;
+    p.rolling_force_friction = q.rolling_force_friction;
     p.youngs_modulus = q.youngs_modulus;
     table.set(s.bead_material, other, p);
   }
