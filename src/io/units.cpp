@@ -1,6 +1,7 @@
 #include "io/units.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -89,11 +90,18 @@ double parse_quantity(std::string_view text, Quantity q) {
   if (ec != std::errc{} || end == s.data())
     throw std::invalid_argument("expected a number with a unit, e.g. \"2 mm\", got \"" +
                                 std::string(text) + "\"");
+  // "inf", "nan" and overflowing values parse as numbers; as quantities they are errors, like
+  // the TOML inf and nan (TableReader::to_number).
+  auto finite = [&](double v) {
+    if (!std::isfinite(v))
+      throw std::invalid_argument("expected a finite number, got \"" + std::string(text) + "\"");
+    return v;
+  };
   const std::string_view unit = trim(std::string_view(end, s.data() + s.size() - end));
-  if (unit.empty()) return value;  // a bare number is SI
+  if (unit.empty()) return finite(value);  // a bare number is SI
   std::string accepted;
   for (const auto& [name, factor] : units_of(q)) {
-    if (name == unit) return value * factor;
+    if (name == unit) return finite(value * factor);
     if (!name.empty()) accepted += (accepted.empty() ? "" : ", ") + std::string(name);
   }
   throw std::invalid_argument("unknown unit \"" + std::string(unit) + "\" for a " +

@@ -195,6 +195,12 @@ def bad_unit():
 
 
 @check
+def non_finite_quantity_string():
+    # a string with a unit skipped the finite check: "inf s" ran forever
+    expect_bad(replace("duration = 2e-5", 'duration = "inf s"'), "simulation.duration", "finite")
+
+
+@check
 def toml_syntax_error():
     expect_bad(replace("seed = 3", "seed = = 3"), "TOML syntax error", "line 6")
 

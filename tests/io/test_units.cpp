@@ -26,3 +26,17 @@ TEST(Units, RejectsWrongDimensionAndGarbage) {
     EXPECT_NE(std::string(e.what()).find("mm"), std::string::npos) << "lists accepted units";
   }
 }
+
+TEST(Units, RejectsNonFiniteQuantities) {
+  // Strings skip TOML's own checks: "inf s" once made a run of -9223372036854775808 steps.
+  for (const char* text : {"inf s", "nan", "-inf ms", "1e308 GPa", "infinity"}) {
+    SCOPED_TRACE(text);
+    try {
+      parse_quantity(text, text[0] == '1' ? Quantity::pressure : Quantity::time);
+      FAIL() << "accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_DOUBLE_EQ(parse_quantity("1e300 s", Quantity::time), 1e300);  // large but finite
+}
