@@ -18,7 +18,7 @@ ContactKinematics glass_contact(double tangential_speed) {
   k.overlap_rate = 1e-4;
   k.tangential_velocity = {tangential_speed, 0.0, 0.0};
   k.tangential_displacement = 8e-8 * k.tangential_velocity;  // dt = 8e-8 s
-  k.relative_angular_velocity = {0.0, 1e-3, 0.0};               // slow rolling
+  k.relative_angular_velocity = {0.0, 1e-3, 0.0};            // slow rolling
   k.relative_rotation = 8e-8 * k.relative_angular_velocity;
   k.effective_radius = 0.5e-3;
   k.effective_mass = 0.5 * 2500.0 * 4.0 / 3.0 * 3.14159 * 1e-9;

@@ -66,8 +66,7 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
                                 pair.rolling_force_friction};
     keep_in_tangent_plane(*h.rolling_force_displacement, n);
     RollingForceHistory rh{*h.rolling_force_displacement};
-    tangential +=
-        rolling_force(rf, n, k.relative_rotation, k.effective_radius, f_n, rh);
+    tangential += rolling_force(rf, n, k.relative_rotation, k.effective_radius, f_n, rh);
     *h.rolling_force_displacement = rh.displacement;
   }
 

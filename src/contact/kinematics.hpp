@@ -30,8 +30,8 @@ struct ContactKinematics {
   Vec3 tangential_velocity;        // end of step, for the dashpots
   Vec3 relative_angular_velocity;  // end of step, for the dashpots
   // What this step moved (half-step relative velocity times dt): the springs' increments.
-  Vec3 tangential_displacement;  // m
-  Vec3 relative_rotation;        // rad
+  Vec3 tangential_displacement;    // m
+  Vec3 relative_rotation;          // rad
   double overlap_increment = 0.0;  // m, growth of U_n over the step
   double effective_radius = 0.0;
   double effective_mass = 0.0;
@@ -45,8 +45,8 @@ inline void set_relative_velocity(ContactKinematics& k, const Vec3& velocity_a,
                                   double lever_b) {
   const Vec3& n = k.normal;
   // surface velocities v_a + lever_a (w_a x n) and v_b - lever_b (w_b x n): one cross product
-  const Vec3 relative =
-      velocity_b - velocity_a - cross(lever_b * angular_velocity_b + lever_a * angular_velocity_a, n);
+  const Vec3 relative = velocity_b - velocity_a -
+                        cross(lever_b * angular_velocity_b + lever_a * angular_velocity_a, n);
   const double normal_speed = dot(relative, n);
   k.overlap_rate = -normal_speed;
   k.tangential_velocity = relative - normal_speed * n;
@@ -69,10 +69,9 @@ inline void set_step_displacement(ContactKinematics& k, double dt, const Vec3& v
   const double normal_speed = dot(velocity_b - velocity_a, n);
   k.overlap_increment = -dt * normal_speed;
   const double shift = lever_shrink * 0.5 * k.overlap_increment;
-  const Vec3 relative = velocity_b - velocity_a -
-                        cross((lever_b + shift) * angular_velocity_b +
-                                  (lever_a + shift) * angular_velocity_a,
-                              n);
+  const Vec3 relative =
+      velocity_b - velocity_a -
+      cross((lever_b + shift) * angular_velocity_b + (lever_a + shift) * angular_velocity_a, n);
   k.tangential_displacement = dt * (relative - dot(relative, n) * n);
   k.relative_rotation = dt * (angular_velocity_b - angular_velocity_a);
 }

@@ -4,6 +4,8 @@
 
 #include <numbers>
 
+#include "contact/contact_law.hpp"
+
 namespace grainlab {
 namespace {
 
@@ -38,8 +40,8 @@ std::vector<SpringDashpot> spring_dashpots(const PairParams& pair, const Contact
   const double m_t = 1.0 / (tangential_compliance(a, ia) + tangential_compliance(b, ib));
   const double i_star = 1.0 / (1.0 / ia.moment + 1.0 / ib.moment);
 
-  const double k_n = pair.stiffness_per_radius * r_star;
-  const double c_n = 2.0 * pair.damping_ratio * std::sqrt(k_n * m_star);
+  const NormalParams normal = normal_params(pair, r_star, m_star);  // k_n, c_n as the force loop
+  const double k_n = normal.stiffness, c_n = normal.damping;
   std::vector<SpringDashpot> out;
   out.push_back(make("normal", "restitution", k_n, c_n, m_star));
   const double k_s = pair.rns * k_n;
@@ -70,8 +72,8 @@ StepLimit step_limit(const std::vector<SpringDashpot>& pieces) {
 }
 
 std::string describe(const SpringDashpot& piece, const std::string& pair_name) {
-  return fmt::format("the {} spring-dashpot of {} (damping ratio {:.3g}{})", piece.piece,
-                     pair_name, piece.damping_ratio,
+  return fmt::format("the {} spring-dashpot of {} (damping ratio {:.3g}{})", piece.piece, pair_name,
+                     piece.damping_ratio,
                      piece.key.empty() ? "" : fmt::format(", set by [[pair]] {}", piece.key));
 }
 
@@ -84,8 +86,7 @@ MaterialStepLimit material_step_limit(const PairTable& table, int particle_mater
     const PairParams& pair = table(particle_material, b);
     if (!pair.defined) continue;
     const Material& other = table.material(b);
-    const ContactBody body_b =
-        other.density ? ContactBody{radius, *other.density} : ContactBody{};
+    const ContactBody body_b = other.density ? ContactBody{radius, *other.density} : ContactBody{};
     const StepLimit limit = step_limit(spring_dashpots(pair, {radius, *a.density}, body_b));
     if (limit.time_step < out.time_step) {
       out.time_step = limit.time_step;

@@ -48,12 +48,12 @@ inline double critical_time_step(double stiffness, double damping, double mass) 
 }
 
 struct SpringDashpot {
-  std::string piece;    // "normal", "sliding", "rolling", "twisting", "rolling force"
-  std::string key;      // the [[pair]] key to change: the one that sets its damping, or (for
-                        // the undamped rolling force) its stiffness
-  double stiffness;     // N/m or N m/rad
-  double damping;       // N s/m or N m s/rad
-  double mass;          // kg or kg m^2
+  std::string piece;  // "normal", "sliding", "rolling", "twisting", "rolling force"
+  std::string key;    // the [[pair]] key to change: the one that sets its damping, or (for
+                      // the undamped rolling force) its stiffness
+  double stiffness;   // N/m or N m/rad
+  double damping;     // N s/m or N m s/rad
+  double mass;        // kg or kg m^2
   double damping_ratio;
   double critical_step;  // s
 };
@@ -79,14 +79,14 @@ StepLimit step_limit(const std::vector<SpringDashpot>& pieces);
 
 // The step limit over every defined pair of one particle material (radius, density) with every
 // material of the table (wall materials have no density; another particle material is taken
-// with the same radius, which is exact for the lab tests, whose beads are one material). `description` names the pair and the
-// piece that set it, e.g. "the sliding dashpot of glass-rubber (zeta 3.1, [[pair]] rzs)".
+// with the same radius, which is exact for the lab tests, whose beads are one material).
+// `description` names the pair and the piece that set it, e.g. "the sliding dashpot of glass-rubber
+// (zeta 3.1, [[pair]] rzs)".
 struct MaterialStepLimit {
   double time_step = INFINITY;
   std::string description;
 };
-MaterialStepLimit material_step_limit(const PairTable& table, int particle_material,
-                                      double radius);
+MaterialStepLimit material_step_limit(const PairTable& table, int particle_material, double radius);
 
 std::string describe(const SpringDashpot& piece, const std::string& pair_name);
 

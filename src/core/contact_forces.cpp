@@ -62,8 +62,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
       if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
       // contact point halfway through the overlap
       const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i,
-                            p.velocity[j], p.angular_velocity[j], lever_j, 0.5);
+      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
+                            p.angular_velocity[j], lever_j, 0.5);
       set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
                             velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
       double inertia = 0.0, contact_radius = 0.0;
@@ -157,16 +157,17 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       // edges and cylinders, where the gap is not linear in the positions: sideways drift s_t
       // changes it by at most |s_t|^2 / (2 gap).
       double touch_fraction = 0.0;
-      const Vec3 s = drift * (p.velocity[i] - w.velocity);
-      const double s_n = dot(s, g.normal);
-      if (drift > 0.0 &&
-          overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
-        Wall before = w;
-        before.point -= drift * w.velocity;
-        const double overlap_before =
-            r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
-        touch_fraction = first_touch_fraction(overlap_before, overlap);
-        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+      if (drift > 0.0) {
+        const Vec3 s = drift * (p.velocity[i] - w.velocity);
+        const double s_n = dot(s, g.normal);
+        if (overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
+          Wall before = w;
+          before.point -= drift * w.velocity;
+          const double overlap_before =
+              r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
+          touch_fraction = first_touch_fraction(overlap_before, overlap);
+          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+        }
       }
       const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
       ContactResponse resp =

@@ -52,7 +52,7 @@ nlohmann::json derived_pairs_json(const std::vector<DerivedPair>& pairs, const T
           {"time_step_explicit", dt.explicit_dt},
           {"stable_step_s", dt.stable_limit},
           {"stable_step_set_by", dt.stable_limit_set_by},
-          {"time_step_limited_by_stability", !dt.limited_by.empty()}};
+          {"time_step_limited_by_stability", dt.limited_by_stability}};
 }
 
 std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const TimeStepChoice& dt) {
@@ -89,7 +89,7 @@ std::string derived_pairs_text(const std::vector<DerivedPair>& pairs, const Time
       "which returns e exactly with the no-tension clamp (docs/contact-model.md).\n",
       dt.collision_duration, dt.stable_limit_set_by, dt.stable_limit, dt.time_step, dt.dt_fraction,
       dt.explicit_dt            ? " (set explicitly)"
-      : !dt.limited_by.empty() ? " (lowered below dt_fraction * t_c for stability)"
+      : dt.limited_by_stability ? " (lowered below dt_fraction * t_c for stability)"
                                 : " (dt_fraction; integrating at t_c itself is unstable)");
   return out;
 }

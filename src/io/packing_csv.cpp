@@ -16,7 +16,8 @@ namespace {
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -42,8 +43,7 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
                                             int default_material, bool fixed,
                                             const std::string& named_by) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw ConfigError(fmt::format("{}: cannot read the packing file {}", named_by, path));
+  if (!in) throw ConfigError(fmt::format("{}: cannot read the packing file {}", named_by, path));
   auto fail = [&](long line, const std::string& what) -> ConfigError {
     return ConfigError(fmt::format("{} line {}: {}", path, line, what));
   };
@@ -64,8 +64,8 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
     if (!have_header) {
       for (size_t k = 0; k < fields.size(); ++k) {
         if (fields[k].empty())
-          throw fail(line, fmt::format("column {} of the header has no name (a trailing comma?)",
-                                       k + 1));
+          throw fail(line,
+                     fmt::format("column {} of the header has no name (a trailing comma?)", k + 1));
         const auto* known = std::find(std::begin(column_names), std::end(column_names), fields[k]);
         if (known == std::end(column_names))
           throw fail(line, fmt::format("unknown column '{}' (known: id, material, radius, x, y, z, "
@@ -96,8 +96,8 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
       double v = 0.0;
       const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
       if (error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(v))
-        throw fail(line, fmt::format("column '{}': '{}' is not a finite number", column_names[c],
-                                     cell));
+        throw fail(line,
+                   fmt::format("column '{}': '{}' is not a finite number", column_names[c], cell));
       return v;
     };
     ParticleEntry p;
@@ -138,8 +138,8 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
     rows.push_back(p);
   }
   if (!have_header)
-    throw ConfigError(fmt::format("{} (named by {}): no header line (radius, x, y, z, ...)", path,
-                                  named_by));
+    throw ConfigError(
+        fmt::format("{} (named by {}): no header line (radius, x, y, z, ...)", path, named_by));
   if (rows.empty())
     throw ConfigError(
         fmt::format("{} (named by {}): no particles after the header", path, named_by));
@@ -154,8 +154,8 @@ std::vector<ParticleEntry> read_packing_csv(const std::string& path,
       throw fail(rows[k].line, fmt::format("id {} is out of range: the {} ids must be 0 .. {}", v,
                                            rows.size(), rows.size() - 1));
     if (seen_on[v])
-      throw fail(rows[k].line, fmt::format("id {} appears twice (first on line {})", v,
-                                           seen_on[v]));
+      throw fail(rows[k].line,
+                 fmt::format("id {} appears twice (first on line {})", v, seen_on[v]));
     seen_on[v] = rows[k].line;
     ordered[v] = rows[k];
   }

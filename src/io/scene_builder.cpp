@@ -53,8 +53,8 @@ ParticleStore build_particles(const SceneConfig& c) {
     SphereGrid grid(2.0 * largest);
     for (size_t i = 0; i < explicit_count; ++i) {
       grid.find_near(spheres[i], [&](uint32_t j) {
-        const double gap = norm(spheres[i].centre - spheres[j].centre) - spheres[i].radius -
-                           spheres[j].radius;
+        const double gap =
+            norm(spheres[i].centre - spheres[j].centre) - spheres[i].radius - spheres[j].radius;
         if (-gap > 0.01 * std::min(spheres[i].radius, spheres[j].radius))
           throw ConfigError(fmt::format(
               "{}: particle[{}] overlaps particle[{}] ({}) by {:.3g} m, more than 1 % of the "
@@ -203,8 +203,7 @@ TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedP
     t.collision_duration = std::min(t.collision_duration, p.collision_duration);
     if (p.can_touch && p.step_limit.time_step < t.stable_limit) {
       t.stable_limit = p.step_limit.time_step;
-      t.stable_limit_set_by =
-          describe(p.step_limit.limiting, p.material_a + "-" + p.material_b);
+      t.stable_limit_set_by = describe(p.step_limit.limiting, p.material_a + "-" + p.material_b);
       t.stable_limit_damped = p.step_limit.limiting.damping_ratio > 0.0;
     }
   }
@@ -229,7 +228,7 @@ TimeStepChoice choose_time_step(const SceneConfig& c, const std::vector<DerivedP
     if (t.time_step > t.stable_limit) {  // a stiffer or more damped piece than the normal one
       t.time_step = t.stable_limit;
       t.dt_fraction = t.time_step / t.collision_duration;
-      t.limited_by = t.stable_limit_set_by;
+      t.limited_by_stability = true;
     }
   }
   return t;

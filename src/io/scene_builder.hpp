@@ -4,10 +4,9 @@
 // overlapping or outside the walls, a region too small) are ConfigErrors too.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
-
-#include <cmath>
 
 #include "contact/pair_table.hpp"
 #include "contact/stability.hpp"
@@ -31,7 +30,7 @@ struct DerivedPair {
   double restitution = 0.0, friction = 0.0, arf = 0.0;
   double rolling_moment_per_force_at_half_percent = 0.0;  // mu_theta at U_n = 0.5 % of r*, m
   double collision_duration = 0.0;                        // s, Eq. 11 (textbook damping)
-  bool can_touch = true;                       // false: a one-bead material's own pair
+  bool can_touch = true;                                  // false: a one-bead material's own pair
   std::vector<SpringDashpot> spring_dashpots;  // every piece in use, with its critical step
   StepLimit step_limit;                        // the stable step of its most restrictive piece
 };
@@ -41,10 +40,10 @@ struct TimeStepChoice {
   double time_step = 0.0;           // s
   double dt_fraction = 0.0;         // dt / t_c
   bool explicit_dt = false;
-  double stable_limit = INFINITY;  // largest step every spring-dashpot in use allows, s
-  std::string limited_by;          // set when the stable limit lowered dt_fraction * t_c
-  std::string stable_limit_set_by;  // the piece that sets stable_limit
-  bool stable_limit_damped = false;  // that piece has a dashpot (lowering it helps)
+  double stable_limit = INFINITY;     // largest step every spring-dashpot in use allows, s
+  bool limited_by_stability = false;  // the stable limit lowered dt_fraction * t_c
+  std::string stable_limit_set_by;    // the piece that sets stable_limit
+  bool stable_limit_damped = false;   // that piece has a dashpot (lowering it helps)
 };
 
 PairTable build_pair_table(const SceneConfig& config);

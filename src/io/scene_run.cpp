@@ -53,10 +53,9 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
                "{} steps\n",
                sim.particles().size(), sim.walls().size(), dt.time_step, dt.dt_fraction,
                dt.collision_duration, total_steps);
-  if (!options.quiet && !dt.limited_by.empty())
-    fmt::print(stderr,
-               "grainlab run: note: dt lowered below dt_fraction * t_c to keep {} stable\n",
-               dt.limited_by);
+  if (!options.quiet && dt.limited_by_stability)
+    fmt::print(stderr, "grainlab run: note: dt lowered below dt_fraction * t_c to keep {} stable\n",
+               dt.stable_limit_set_by);
 
   std::vector<uint32_t> traced = config.output.trace_ids;
   if (config.output.trace_all)

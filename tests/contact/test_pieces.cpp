@@ -36,7 +36,8 @@ TEST(SlidingPiece, DashpotCountsTowardsTheCap) {
   EXPECT_DOUBLE_EQ(f.x, 2.0);
   // at slip the spring keeps (F - c v)/k
   SlidingHistory g;
-  const Vec3 s = sliding_force(p, {0.004, 0.0, 0.0}, {0.04, 0.0, 0.0}, 10.0, g);  // trial 4 + 4 = 8 N
+  const Vec3 s =
+      sliding_force(p, {0.004, 0.0, 0.0}, {0.04, 0.0, 0.0}, 10.0, g);  // trial 4 + 4 = 8 N
   EXPECT_DOUBLE_EQ(s.x, 5.0);
   EXPECT_DOUBLE_EQ(g.spring.x, (5.0 - 4.0) / 1000.0);
 }
@@ -80,9 +81,11 @@ TEST(RollingPiece, ContactCircleRadius) {
 TEST(TwistingPiece, CapsAboutTheNormal) {
   const TwistingParams p{1.0, 0.0, 1e-3};
   TwistingHistory h;
-  Vec3 m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, 5e-3}, {0.0, 0.0, 0.5}, 10.0, h);  // 5e-3 < 1e-2
+  Vec3 m =
+      twisting_moment(p, {0, 0, 1}, {0.0, 0.0, 5e-3}, {0.0, 0.0, 0.5}, 10.0, h);  // 5e-3 < 1e-2
   EXPECT_DOUBLE_EQ(m.z, 5e-3);
-  m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, -5e-2}, {0.0, 0.0, -5.0}, 10.0, h);  // -4.5e-2 capped
+  m = twisting_moment(p, {0, 0, 1}, {0.0, 0.0, -5e-2}, {0.0, 0.0, -5.0}, 10.0,
+                      h);  // -4.5e-2 capped
   EXPECT_DOUBLE_EQ(m.z, -1e-2);
   EXPECT_DOUBLE_EQ(h.angle, -1e-2);
 }
@@ -106,7 +109,8 @@ TEST(Kinematics, StepDisplacementUsesMidStepLevers) {
   const double d_u = v_n * dt;
   EXPECT_DOUBLE_EQ(k.overlap_increment, d_u);
   const double lever_mid = lever_end + 0.5 * d_u;
-  // B's surface relative to A's: -(v_a + lever w_a x n); w x n = (0, w, 0) x (0, 0, -1) = (-w, 0, 0)
+  // B's surface relative to A's: -(v_a + lever w_a x n); w x n = (0, w, 0) x (0, 0, -1) = (-w, 0,
+  // 0)
   EXPECT_NEAR(k.tangential_displacement.x, -dt * (0.01 - lever_mid * w), 1e-22);
   EXPECT_DOUBLE_EQ(k.tangential_displacement.z, 0.0);
   // a pair: each lever r - U_n/2 grows by dU/4 at mid-step
@@ -129,9 +133,9 @@ PairParams pair_with_damping_ratio(double zeta) {
 }  // namespace
 
 TEST(FirstTouch, FractionOfTheStepInContact) {
-  EXPECT_DOUBLE_EQ(first_touch_fraction(-3e-9, 1e-9), 0.25);  // touched 3/4 into the step
-  EXPECT_DOUBLE_EQ(first_touch_fraction(0.0, 1e-9), 1.0);     // at the step's start
-  EXPECT_DOUBLE_EQ(first_touch_fraction(2e-9, 3e-9), 0.0);    // touching before the step
+  EXPECT_DOUBLE_EQ(first_touch_fraction(-3e-9, 1e-9), 0.25);    // touched 3/4 into the step
+  EXPECT_DOUBLE_EQ(first_touch_fraction(0.0, 1e-9), 1.0);       // at the step's start
+  EXPECT_DOUBLE_EQ(first_touch_fraction(2e-9, 3e-9), 0.0);      // touching before the step
   EXPECT_DOUBLE_EQ(first_touch_fraction(-1e-9, -0.5e-9), 0.0);  // separating, not touching
 }
 
@@ -166,8 +170,7 @@ TEST(ContactLaw, HeadOnPairForceAndTorques) {
   EXPECT_DOUBLE_EQ(k.overlap_rate, 0.01);
   Vec3 spring;
   const double dt = 1e-7;
-  set_step_displacement(k, dt, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0}, 1e-3,
-                        0.25);
+  set_step_displacement(k, dt, {0, 0, 0}, {0, 0, 0}, 1e-3, {-0.01, 1e-3, 0}, {0, 0, 0}, 1e-3, 0.25);
   EXPECT_DOUBLE_EQ(k.tangential_displacement.y, 1e-3 * dt);
   EXPECT_DOUBLE_EQ(k.overlap_increment, 0.01 * dt);
   const ContactResponse r = contact_response<false, false, false>(

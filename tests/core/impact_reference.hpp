@@ -1,6 +1,6 @@
 // An independent reference for single oblique impacts under the linear spring-dashpot law with a
-// Coulomb-capped tangential spring (docs/contact-model.md), written for the tests only: it shares no
-// code with grainlab's contact law or integrator.
+// Coulomb-capped tangential spring (docs/contact-model.md), written for the tests only: it shares
+// no code with grainlab's contact law or integrator.
 //
 // The motion is planar (x-z plane, spins about y), which is the setting of the oblique-impact
 // benchmarks of Chung & Ooi (Granular Matter 13, 2011, tests 4-8: a sphere on a wall and two
@@ -21,10 +21,10 @@
 namespace impact_reference {
 
 struct Constants {
-  double k_n, c_n;            // normal spring and dashpot
-  double k_s, c_s, mu;        // sliding spring, dashpot, friction
-  double k_roll = 0, c_roll = 0, arf = 0;     // rolling spring (N m/rad), dashpot, ARF
-  double twisting_friction = 0;               // twisting: same k, c as rolling
+  double k_n, c_n;                         // normal spring and dashpot
+  double k_s, c_s, mu;                     // sliding spring, dashpot, friction
+  double k_roll = 0, c_roll = 0, arf = 0;  // rolling spring (N m/rad), dashpot, ARF
+  double twisting_friction = 0;            // twisting: same k, c as rolling
 };
 
 struct Body {
@@ -147,8 +147,7 @@ class Integrator {
     shorten(s.spring, c_.k_s, c_.c_s, g.tangential_rate, c_.mu * f_n);
     const double a_radius = contact_radius(g.overlap, s);
     if (c_.arf > 0)
-      shorten(s.roll, c_.k_roll, c_.c_roll, (wall_ ? 0.0 : s.b.w) - s.a.w,
-              c_.arf * a_radius * f_n);
+      shorten(s.roll, c_.k_roll, c_.c_roll, (wall_ ? 0.0 : s.b.w) - s.a.w, c_.arf * a_radius * f_n);
     if (c_.twisting_friction > 0)
       shorten(s.twist, c_.k_roll, c_.c_roll, s.a.w_normal, c_.twisting_friction * a_radius * f_n);
   }

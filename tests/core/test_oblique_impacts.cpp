@@ -6,8 +6,8 @@
 // and e = 0.5 and 1. grainlab's tangential restitution must lie within 0.005 of the reference at
 // 50 steps per contact, and its error must fall at second order when the step is halved; the same
 // for rolling resistance and twisting. The error figures are printed as a table.
-#include <gtest/gtest.h>
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -36,22 +36,19 @@ struct ImpactCase {
   Spin spin;
   double rns, restitution;
   double rzs = 0.0, arf = 0.0, twisting_friction = 0.0;
-  double normal_spin = 0.0;  // rad/s about the wall normal (twisting; wall only)
+  double normal_spin = 0.0;             // rad/s about the wall normal (twisting; wall only)
   double rolling_damping_ratio = -1.0;  // eta_theta; < 0: the normal zeta (grainlab's default)
 
   std::string name() const {
     const char* s = spin == Spin::none ? "no spin" : spin == Spin::back ? "back-spin" : "top-spin";
-    return fmt::format("{} psi={} {} ks/kn={:.3f} e={}{}{}{}{}", wall ? "wall" : "pair", psi, s,
-                       rns, restitution, rzs > 0 ? fmt::format(" rzs={}", rzs) : "",
-                       arf > 0 ? fmt::format(" arf={}", arf) : "",
-                       twisting_friction > 0
-                           ? fmt::format(" twist={} w_n={}", twisting_friction, normal_spin)
-                           : "",
-                       rolling_damping_ratio == 0.0 ? " eta=0" : "");
+    return fmt::format(
+        "{} psi={} {} ks/kn={:.3f} e={}{}{}{}{}", wall ? "wall" : "pair", psi, s, rns, restitution,
+        rzs > 0 ? fmt::format(" rzs={}", rzs) : "", arf > 0 ? fmt::format(" arf={}", arf) : "",
+        twisting_friction > 0 ? fmt::format(" twist={} w_n={}", twisting_friction, normal_spin)
+                              : "",
+        rolling_damping_ratio == 0.0 ? " eta=0" : "");
   }
 };
-
-double sphere_mass() { return glass_density * 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3); }
 
 PairTable table_for(const ImpactCase& c) {
   PairTable t({Material{"glass", glass_E, 0.245, glass_density}, Material{"wall", {}, {}, {}}});
@@ -73,7 +70,7 @@ PairTable table_for(const ImpactCase& c) {
 // velocity. The contact-point tangential velocity is psi mu v_n in every spin variant; back-spin
 // and top-spin split it between the centre's velocity and the spin.
 ref::State initial_state(const ImpactCase& c) {
-  const double m = sphere_mass(), inertia = 0.4 * m * radius * radius;
+  const double m = sphere_mass(radius), inertia = 0.4 * m * radius * radius;
   const double vt = c.psi * friction * normal_speed;
   // centre part and spin part (radius * w) of the contact-point velocity
   const double centre = c.spin == Spin::none ? vt : c.spin == Spin::back ? 0.5 * vt : 1.5 * vt;
@@ -100,7 +97,7 @@ ref::State initial_state(const ImpactCase& c) {
 
 ref::Constants reference_constants(const ImpactCase& c, const PairTable& t) {
   const PairParams& p = t(0, 0);
-  const double m = sphere_mass(), inertia = 0.4 * m * radius * radius;
+  const double m = sphere_mass(radius), inertia = 0.4 * m * radius * radius;
   const double r_star = c.wall ? radius : 0.5 * radius, m_star = c.wall ? m : 0.5 * m;
   const double i_star = c.wall ? inertia : 0.5 * inertia;
   ref::Constants k{};
@@ -184,7 +181,9 @@ ref::Outcome grainlab_outcome(const ImpactCase& c, double steps_per_contact, dou
 // Steps per contact N = 50 2^k up to 3200: six halvings of the step.
 constexpr int resolutions = 7;
 constexpr double reference_steps_per_contact = 80000;
-double steps_per_contact(int k) { return 50.0 * (1 << k); }
+double steps_per_contact(int k) {
+  return 50.0 * (1 << k);
+}
 
 // Where in the first step the bodies first touch; the error figure is the largest over these.
 constexpr double touch_phases[8] = {0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875};
@@ -208,8 +207,8 @@ std::vector<ErrorRow> run_cases(const std::vector<ImpactCase>& cases,
     ErrorRow row{c.name(), {}, 0.0};
     for (int k = 0; k < resolutions; ++k)
       for (double phase : touch_phases) {
-        const double e = std::abs(grainlab_outcome(c, steps_per_contact(k), phase).*figure -
-                                  r.*figure);
+        const double e =
+            std::abs(grainlab_outcome(c, steps_per_contact(k), phase).*figure - r.*figure);
         if (!(e <= row.error[k])) row.error[k] = e;  // a NaN figure is kept as the error
       }
     // Observed order: least-squares slope of -log2(error) against log2(N) over the six halvings.
@@ -229,12 +228,11 @@ std::vector<ErrorRow> run_cases(const std::vector<ImpactCase>& cases,
 }
 
 void print(const std::vector<ErrorRow>& rows, const char* figure) {
-  fmt::print("{:<62} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6}\n",
-             fmt::format("case ({} error)", figure), "N=50", "N=100", "N=200", "N=400", "N=3200",
-             "order");
+  fmt::print("{:<62} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6}\n", fmt::format("case ({} error)", figure),
+             "N=50", "N=100", "N=200", "N=400", "N=3200", "order");
   for (const ErrorRow& r : rows)
-    fmt::print("{:<62} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>6.2f}\n", r.name,
-               r.error[0], r.error[1], r.error[2], r.error[3], r.error[6],
+    fmt::print("{:<62} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>9.2e} {:>6.2f}\n", r.name, r.error[0],
+               r.error[1], r.error[2], r.error[3], r.error[6],
                r.error[0] > measurable_error ? r.order : NAN);
 }
 
@@ -266,9 +264,9 @@ std::vector<ImpactCase> sliding_cases(bool wall) {
 
 TEST(ObliqueImpactReference, ConvergesWhenItsStepIsHalved) {
   // The reference must be far more accurate than the differences the tests resolve (~1e-5).
-  for (const ImpactCase& c :
-       {ImpactCase{true, 1.0, Spin::back, 2.0 / 7.0, 0.5}, ImpactCase{false, 2.0, Spin::top, 1.0, 0.5},
-        ImpactCase{true, 0.5, Spin::none, 1.0, 1.0, 0.0, 20.0}}) {
+  for (const ImpactCase& c : {ImpactCase{true, 1.0, Spin::back, 2.0 / 7.0, 0.5},
+                              ImpactCase{false, 2.0, Spin::top, 1.0, 0.5},
+                              ImpactCase{true, 0.5, Spin::none, 1.0, 1.0, 0.0, 20.0}}) {
     SCOPED_TRACE(c.name());
     EXPECT_NEAR(reference_outcome(c, 20000).tangential_restitution,
                 reference_outcome(c, 40000).tangential_restitution, 1e-7);

@@ -25,7 +25,7 @@ struct Stop {
 Stop roll_until_stopped(double dt_fraction) {
   const double r = 1e-3, g = 9.81, arf = 40.0, v0 = 1e-3;
   const PairTable table = two_material_table(0.5, 0.5, arf);
-  const double m = glass_density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double m = sphere_mass(r);
   const double inertia = 0.4 * m * r * r;
   const double k_n = table(0, 1).stiffness_per_radius * r;
   const double overlap = m * g / k_n;  // resting overlap

@@ -21,15 +21,11 @@ namespace {
 
 constexpr double radius = 1e-3;
 
-double sphere_mass(double density) {
-  return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
-}
-
 // Ratio of the normal oscillation's amplitude late in the run to its first amplitude, for a
 // sphere pressed on a wall by a strong body force and nudged, at dt = factor * dt_crit.
 double ring_down(double restitution, double factor) {
   const PairTable table = two_material_table(restitution, 0.0);
-  const double m = sphere_mass(glass_density);
+  const double m = sphere_mass(radius);
   const double k_n = table(0, 1).stiffness_per_radius * radius;
   const double c_n = 2.0 * table(0, 1).damping_ratio * std::sqrt(k_n * m);
   const double g = 1e4;  // a deep resting overlap, so the nudge never opens the contact
@@ -70,7 +66,7 @@ TEST(StableStep, CriticalStepMatchesTheIntegrator) {
 namespace {
 
 struct SlopeRun {
-  double creep;     // m, movement of the centre along the slope
+  double creep;  // m, movement of the centre along the slope
   bool blew_up;
   double time_step;
 };
@@ -89,7 +85,7 @@ SlopeRun rest_on_slope(double rzs, double rolling_damping_ratio, bool use_rule) 
   q.rolling_damping_ratio = rolling_damping_ratio;
   t.set(0, 0, q);
   t.set(0, 1, q);
-  const double m = sphere_mass(glass_density);
+  const double m = sphere_mass(radius);
   const double rest = m * g * std::cos(theta) / (t(0, 1).stiffness_per_radius * radius);
   const double plain = 0.1 * collision_duration(radius, glass_density, soft_E, 0.5);
   SimulationSettings s;

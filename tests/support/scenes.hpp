@@ -2,6 +2,7 @@
 // chosen restitution and friction, optional walls.
 #pragma once
 
+#include <numbers>
 #include <vector>
 
 #include "contact/pair_table.hpp"
@@ -12,6 +13,11 @@ namespace grainlab::test {
 
 inline constexpr double glass_E = 46.2e9;        // Pa (reference beads)
 inline constexpr double glass_density = 2500.0;  // kg/m^3
+
+// Mass of a sphere, kg (glass unless a density is given).
+inline double sphere_mass(double radius, double density = glass_density) {
+  return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+}
 
 // Material 0: "glass" particles; material 1: "wall" (no E or density of its own).
 inline PairTable two_material_table(double restitution, double friction, double arf = 0.0) {
