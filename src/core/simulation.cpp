@@ -27,13 +27,18 @@ void Simulation::rebuild_neighbors() {
 }
 
 void Simulation::step() {
+  for (StepListener* l : listeners_) l->before_step(*this);
   kick_and_drift();
-  if (neighbors_.needs_rebuild(particles_, walls_)) rebuild_neighbors();
+  if (neighbors_.needs_rebuild(particles_, walls_)) {
+    rebuild_neighbors();
+    for (StepListener* l : listeners_) l->after_rebuild(*this);
+  }
   compute_forces(settings_.time_step);
   half_kick();
   time_ += settings_.time_step;
   ++step_count_;
   check_health();
+  for (StepListener* l : listeners_) l->after_step(*this);
 }
 
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.

@@ -14,6 +14,7 @@
 #include "core/neighbor_search.hpp"
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
+#include "core/step_listener.hpp"
 #include "geometry/wall.hpp"
 
 namespace grainlab {
@@ -45,6 +46,16 @@ class Simulation {
   void step();
   void advance(long steps) {
     for (long s = 0; s < steps; ++s) step();
+  }
+
+  // Listeners are called in the order attached; the Simulation does not own them.
+  void attach(StepListener& listener) { listeners_.push_back(&listener); }
+  void detach(StepListener& listener) { std::erase(listeners_, &listener); }
+
+  // Commands (between steps).
+  void set_wall_velocity(size_t wall, const Vec3& velocity) { walls_[wall].velocity = velocity; }
+  void set_wall_external_force(size_t wall, const Vec3& force) {
+    walls_[wall].external_force = force;
   }
 
   double time() const { return time_; }
@@ -92,6 +103,7 @@ class Simulation {
   long step_count_ = 0;
   double max_overlap_fraction_ = 0.0;
   double max_speed2_ = 0.0;
+  std::vector<StepListener*> listeners_;
 };
 
 }  // namespace grainlab
