@@ -55,8 +55,7 @@ std::string hostname() {
   return name;
 }
 
-Packing load_or_make(const std::string& workload, const std::string& cache_dir, bool allow_1m,
-                     const std::string& start_from) {
+Packing load_or_make(const std::string& workload, const std::string& cache_dir, bool allow_1m) {
   std::filesystem::create_directories(cache_dir);
   const std::string path = cache_dir + "/" + workload + ".csv";
   Packing p;
@@ -65,14 +64,10 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
     return p;
   }
   fmt::print(stderr, "packing {}: not cached, building it (once)...\n", workload);
-  Packing start;
-  const bool have_start = !start_from.empty() && read_packing_csv(start_from, start);
   if (workload == "dense-11k") {
-    p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true,
-                           have_start ? &start : nullptr);
+    p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true);
   } else if (workload == "dense-88k") {
-    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true,
-                           have_start ? &start : nullptr);
+    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true);
   } else if (workload == "settle-1M") {
     if (!allow_1m) throw CLI::ValidationError("settle-1M", "a million beads: pass --allow-1m");
     // Solid fraction 0.25 in a 0.25 x 0.25 x 0.27 m box; gravity does the rest.
@@ -96,7 +91,7 @@ int main(int argc, char** argv) {
   std::string cache_dir = "bench-cache";
   std::string results_dir = std::string(GRAINLAB_SOURCE_DIR) + "/bench/results";
   std::string lammps_data, tile;
-  std::string label = "", start_from;
+  std::string label = "";
   bool allow_1m = false, no_csv = false;
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads, "thread counts to run")->delimiter(',');
@@ -109,13 +104,11 @@ int main(int argc, char** argv) {
                  "write the packing as a LAMMPS data file and exit");
   app.add_option("--tile", tile, "run NXxNYxNZ copies of the packing side by side");
   app.add_option("--label", label, "free text stored in the CSV row (e.g. the commit)");
-  app.add_option("--start-from", start_from,
-                 "build the packing on from this packing CSV (a partly compressed one)");
   app.add_flag("--allow-1m", allow_1m, "allow building the settle-1M workload");
   app.add_flag("--no-csv", no_csv, "do not append to the results CSV");
   CLI11_PARSE(app, argc, argv);
 
-  Packing packing = load_or_make(workload, cache_dir, allow_1m, start_from);
+  Packing packing = load_or_make(workload, cache_dir, allow_1m);
   std::string name = workload;
   if (!tile.empty()) {
     int nx = 1, ny = 1, nz = 1;

@@ -14,6 +14,9 @@
 #include "contact/damping.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
+#include "geometry/cuboid_box.hpp"
+#include "io/progress.hpp"
+#include "lab/specimen.hpp"
 
 namespace grainlab::bench {
 
@@ -35,28 +38,12 @@ SimulationSettings reference_settings(double min_radius, Vec3 gravity) {
       dt_fraction * collision_duration(min_radius, glass_density, glass_E, glass_restitution);
   s.dt_fraction = dt_fraction;
   s.gravity = gravity;
-  s.skin = 0.2 * min_radius;
+  s.skin = verlet_skin(2.0 * min_radius);
   return s;
 }
 
 std::vector<Wall> box_walls(const Vec3& lo, const Vec3& hi) {
-  std::vector<Wall> walls;
-  const char* names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
-  for (int d = 0; d < 3; ++d) {
-    for (int side = 0; side < 2; ++side) {
-      Wall w;
-      w.name = names[2 * d + side];
-      w.shape = WallShape::plane;
-      w.material = 1;
-      w.point = side == 0 ? lo : hi;
-      Vec3 n;
-      n[d] = side == 0 ? 1.0 : -1.0;
-      w.normal = n;
-      finish_wall_geometry(w);
-      walls.push_back(w);
-    }
-  }
-  return walls;
+  return cuboid_walls(lo, hi, 1, 1);
 }
 
 namespace {
@@ -99,134 +86,33 @@ Packing make_loose_packing(long count, const Vec3& box_size, uint64_t seed) {
   return p;
 }
 
-// Why a softened modulus: with the real E the time step is 0.1 t_c ~ 8e-8 s and compressing a
-// loose insertion to a jammed state takes ~10^5 steps. For a linear spring the static
-// equilibrium geometry depends only on force / stiffness, so a packing compressed with E/s to a
-// stress p/s has the same overlaps as one compressed with E to p: the same packing, made with
-// sqrt(s) times fewer steps. The compaction uses the benchmark's friction (mu = 0.16), so the
-// packing is stable under the benchmark's contact law (a frictionless one would be denser but
-// jams only slowly); e = 0.3 dissipates quickly.
-Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, bool verbose,
-                           const Packing* start) {
-  constexpr double softening = 40.0;
-  // Pa: ten times the reference confinement (150 kPa). At 150 kPa the overlaps are ~1e-5 d and
-  // a packing near jamming at rest is hard to tell from one that is not; at 1.5 MPa the servo
-  // ends in a clearly jammed state (the cost of a step does not depend on the stress).
-  constexpr double confining_stress = 1.5e6;
-  const double soft_E = glass_E / softening;
-  const double target_stress = confining_stress / softening;
-  const double bead_volume = std::numbers::pi / 6.0 * bead_diameter * bead_diameter * bead_diameter;
-  const double target_fraction =
-      count * bead_volume / (target_size.x * target_size.y * target_size.z);
-  // Random sequential insertion is comfortable up to a solid fraction of ~0.3.
-  const double grow = std::cbrt(std::max(1.0, target_fraction / 0.30));
-  const Vec3 centre = 0.5 * target_size;
-  Vec3 lo = centre - (0.5 * grow) * target_size, hi = centre + (0.5 * grow) * target_size;
-  Packing loose;
-  if (start) {  // go on from an earlier (partly compressed) packing
-    loose = *start;
-    lo = start->box_lo;
-    hi = start->box_hi;
-  } else {
-    for (const Sphere& s : insert(count, lo, hi, seed)) {
-      loose.radius.push_back(s.radius);
-      loose.position.push_back(s.centre);
-    }
-  }
-  const double r_min = min_radius_of(loose.radius);
-  SimulationSettings settings;
-  settings.time_step = dt_fraction * collision_duration(r_min, glass_density, soft_E, 0.3);
-  settings.skin = 0.2 * r_min;
-  Simulation sim(store_of(loose, glass_density), box_walls(lo, hi),
-                 reference_table(soft_E, 0.3, glass_friction), settings);
-
-  // Servo by affine compression: every chunk of steps, bead centres and wall planes are scaled
-  // together towards the box centre by a strain that falls to zero as the mean wall stress
-  // reaches the target (and reverses above it). Moving only the walls would push a dense layer
-  // ahead of each wall, whose inertia the servo would read as stress; the affine map has none.
-  // Between chunks the bead velocities are damped a little (preparation only).
-  constexpr double max_strain_per_chunk = 5e-4;
-  constexpr int chunk = 25;
-  long steps_at_target = -1;
-  auto mean_stress = [&] {
-    const auto& w = sim.walls();
-    double sum = 0.0;
-    for (int d = 0; d < 3; ++d) {
-      const int a = (d + 1) % 3, b = (d + 2) % 3;
-      const double area =
-          (w[2 * a + 1].point[a] - w[2 * a].point[a]) * (w[2 * b + 1].point[b] - w[2 * b].point[b]);
-      for (int side = 0; side < 2; ++side) sum += std::abs(w[2 * d + side].force[d]) / area;
-    }
-    return sum / 6.0;
-  };
-  double stress = 0.0, last_fraction = 0.0;
-  int tries = 0;
-  bool keep_servo_state = false;
-  for (long step = 0; step < 400000; step += chunk) {
-    stress = 0.8 * stress + 0.2 * mean_stress();
-    auto& w = sim.walls();
-    const double volume = (w[1].point.x - w[0].point.x) * (w[3].point.y - w[2].point.y) *
-                          (w[5].point.z - w[4].point.z);
-    if (steps_at_target < 0 && stress > target_stress) steps_at_target = step;
-    // Done when the servo has settled: at the target stress and no longer compressing (a
-    // bed that is not yet jammed shows stress only while it is being squeezed).
-    if (step % 2000 == 0) {
-      const double fraction = count * bead_volume / volume;
-      const bool settled =
-          std::abs(fraction - last_fraction) < 2e-4 && std::abs(stress / target_stress - 1.0) < 0.1;
-      last_fraction = fraction;
-      if (steps_at_target >= 0 && settled) {
-        // A bed that is not jammed loses its stress at rest: then compress on. After three
-        // tries the servo state itself is kept (dense, at the target stress while being
-        // squeezed, not at rest: the benchmark needs the contacts, and it runs for ~0.2 ms).
-        const ParticleStore servo_state = sim.particles();
-        sim.advance(2000);
-        if (mean_stress() > 0.3 * target_stress) break;
-        if (verbose)
-          fmt::print(stderr, "  not jammed yet (stress at rest {:.1f} Pa)\n", mean_stress());
-        if (++tries == 3) {
-          sim.particles() = servo_state;
-          keep_servo_state = true;
-          break;
-        }
-        steps_at_target = -1;
-      }
-    }
-    const double strain =
-        max_strain_per_chunk * std::clamp(1.0 - stress / target_stress, -0.3, 1.0);
-    const double scale = 1.0 - strain;
-    ParticleStore& beads = sim.particles();
-    for (size_t k = 0; k < beads.size(); ++k) {
-      beads.position[k] = centre + scale * (beads.position[k] - centre);
-      beads.velocity[k] *= 0.95;
-      beads.angular_velocity[k] *= 0.95;
-    }
-    for (Wall& wall : w) wall.point = centre + scale * (wall.point - centre);
-    if (verbose && step % 5000 == 0)
-      fmt::print(stderr,
-                 "  compaction step {:6d}: mean wall stress {:8.1f} Pa (target {:.1f}), solid "
-                 "fraction {:.3f}\n",
-                 step, stress, target_stress, count * bead_volume / volume);
-    sim.advance(chunk);
-  }
-  if (!keep_servo_state) sim.advance(3000);  // relax with the walls at rest
+// The dense packings are made by the laboratory's own preparation (lab/specimen.hpp): beads on a
+// jittered lattice, compressed isotropically by six servo-held walls to 150 kPa with the
+// benchmark's contact law (glass-glass and glass-wall pairs alike), so the benchmark runs on the
+// same kind of specimen the triaxial test shears.
+Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, bool verbose) {
+  SpecimenSettings s;
+  s.count = count;
+  s.diameter = bead_diameter;
+  s.diameter_tolerance = 0.01 * bead_diameter;
+  s.nominal_box = target_size;
+  s.confining_stress = 150e3;
+  s.bead_material = 0;
+  s.lateral_material = s.platen_material = 1;
+  s.density = glass_density;
+  s.dt_fraction = dt_fraction;
+  s.seed = seed;
+  Progress progress("packing", !verbose);
+  const Specimen specimen = prepare_cuboid_specimen(
+      s, reference_table(glass_E, glass_restitution, glass_friction), &progress);
+  progress.finish(fmt::format("solid fraction {:.4f}, equilibrium {}", specimen.solid_fraction,
+                              specimen.equilibrium_reached ? "reached" : "not reached"));
   Packing p;
-  const ParticleStore& s = sim.particles();
-  p.radius.resize(s.size());
-  p.position.resize(s.size());
-  for (size_t k = 0; k < s.size(); ++k) {  // back to input order
-    p.radius[s.id[k]] = s.radius[k];
-    p.position[s.id[k]] = s.position[k];
-  }
-  const auto& w = sim.walls();
-  p.box_lo = {w[0].point.x, w[2].point.y, w[4].point.z};
-  p.box_hi = {w[1].point.x, w[3].point.y, w[5].point.z};
-  if (verbose)
-    fmt::print(stderr,
-               "  packing: {} steps, box {:.2f} x {:.2f} x {:.2f} mm, wall stress {:.1f} Pa (x{} "
-               "with real E)\n",
-               sim.step_count(), 1e3 * (p.box_hi.x - p.box_lo.x), 1e3 * (p.box_hi.y - p.box_lo.y),
-               1e3 * (p.box_hi.z - p.box_lo.z), mean_stress(), softening);
+  const ParticleStore& q = specimen.particles;  // in id order
+  p.radius = q.radius;
+  p.position = q.position;
+  p.box_lo = specimen.low;
+  p.box_hi = specimen.high;
   return p;
 }
 

@@ -1,7 +1,7 @@
 // Benchmark workloads, built with the library API like the test scenes (tests/support/scenes.hpp):
 //
-//   dense-11k  11,636 reference glass beads (d = 2 mm +- 1 %) isotropically compressed between
-//              6 plane walls from a 35 x 35 x 80 mm target box (the triaxial specimen)
+//   dense-11k  11,636 reference glass beads (d = 2 mm +- 1 %) prepared by the triaxial test's own
+//              preparation in a 35 x 35 x 80 mm nominal box at 150 kPa (the triaxial specimen)
 //   dense-88k  88,000 beads, 60 wide x 100 thick x 100 high mm target (the plane strain specimen)
 //   settle-1M  a million beads inserted loosely in a tall box, settling under gravity (opt-in)
 //
@@ -41,14 +41,12 @@ PairTable reference_table(double youngs_modulus, double restitution, double fric
 // The benchmark settings: dt = 0.1 t_c of the smallest bead, skin = 0.2 r_min.
 SimulationSettings reference_settings(double min_radius, Vec3 gravity = {});
 
-// Six plane walls on the faces of the box, normals pointing inwards (material 1).
+// Six plane walls on the faces of the box (geometry/cuboid_box.hpp), all of material 1.
 std::vector<Wall> box_walls(const Vec3& lo, const Vec3& hi);
 
-// Random loose insertion in an enlarged box, then frictionless isotropic compression by servo
-// walls up to the confining stress, then relaxation (see scenes.cpp for why a softened E).
-// `start`: go on from this packing (and its box) instead of a fresh insertion.
-Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, bool verbose,
-                           const Packing* start = nullptr);
+// The laboratory's preparation (lab/specimen.hpp) of `count` beads in a box of the target
+// aspect ratio, compressed isotropically to 150 kPa with the benchmark's contact law.
+Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, bool verbose);
 
 // Loose random insertion for the settling workload (no compression).
 Packing make_loose_packing(long count, const Vec3& box_size, uint64_t seed);

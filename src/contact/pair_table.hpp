@@ -29,6 +29,7 @@ struct PairParams {
 
 struct ContactPieces {
   bool rolling = false, twisting = false, rolling_force = false;
+  friend bool operator==(const ContactPieces&, const ContactPieces&) = default;
 };
 
 class PairTable {

@@ -34,11 +34,18 @@
 namespace grainlab {
 
 inline constexpr double holding_proportional_gain = 0.2;
+inline constexpr double compaction_proportional_gain = 0.02;
+
+// The two regimes above; the gains are chosen here and nowhere else.
+enum class ServoRegime { compaction, holding };
+inline double proportional_gain(ServoRegime r) {
+  return r == ServoRegime::holding ? holding_proportional_gain : compaction_proportional_gain;
+}
 
 struct ServoSettings {
-  double target_stress = 0.0;  // Pa, compressive positive
-  double max_speed = 0.01;     // m/s
-  double proportional = 0.02;  // alpha_p
+  double target_stress = 0.0;                          // Pa, compressive positive
+  double max_speed = 0.01;                             // m/s
+  double proportional = compaction_proportional_gain;  // alpha_p
 };
 
 class StressServo {
@@ -59,6 +66,7 @@ class StressServo {
   }
 
   void set_max_speed(double v) { s_.max_speed = v; }
+  void set_target(double stress) { s_.target_stress = stress; }
   double integral() const { return integral_; }
   void set_integral(double v) { integral_ = v; }  // for restarts
 

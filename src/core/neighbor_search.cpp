@@ -7,11 +7,11 @@
 namespace grainlab {
 
 bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
-  if (position_at_build_.size() != p.size() || wall_point_at_build_.size() != walls.size())
+  if (position_at_build_.size() != p.size() || wall_pose_at_build_.size() != walls.size())
     return true;
   const double limit2 = 0.25 * skin_ * skin_;
   for (size_t w = 0; w < walls.size(); ++w)
-    if (norm2(walls[w].point - wall_point_at_build_[w]) > limit2) return true;
+    if (surface_displacement(wall_pose_at_build_[w], walls[w]) > 0.5 * skin_) return true;
   const long n = static_cast<long>(p.size());
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
@@ -251,8 +251,8 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   wall_contacts.normal_force.assign(mw, 0.0);
 
   position_at_build_ = p.position;
-  wall_point_at_build_.resize(walls.size());
-  for (size_t w = 0; w < walls.size(); ++w) wall_point_at_build_[w] = walls[w].point;
+  wall_pose_at_build_.resize(walls.size());
+  for (size_t w = 0; w < walls.size(); ++w) wall_pose_at_build_[w] = pose_of(walls[w]);
   ++rebuild_count_;
 }
 

@@ -6,7 +6,8 @@
 // the particle's own cell and the cells after it; a pair enters the list when the gap between
 // the spheres is below the skin. Walls get a candidate list the same way. Contact histories are
 // carried across a rebuild by a sort-merge on the permanent particle ids.
-// The list stays valid while no particle and no wall has moved more than skin/2.
+// The list stays valid while no particle and no point of a wall's surface has moved more than
+// skin/2 (a wall that grows or turns counts by its farthest point: geometry/wall.hpp).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,13 @@
 #include "geometry/wall.hpp"
 
 namespace grainlab {
+
+// The one rule for the Verlet skin: a tenth of the particle diameter (the largest diameter of
+// a scene, the nominal bead diameter of a specimen). Rebuilds then come every few hundred steps
+// in a quasi-static test, and the list holds ~1.5x the touching pairs.
+inline double verlet_skin(double diameter) {
+  return 0.1 * diameter;
+}
 
 class NeighborSearch {
  public:
@@ -32,7 +40,7 @@ class NeighborSearch {
   // What decides the next rebuild (the cell grid is made anew at every rebuild).
   template <class Io>
   void for_each_field(Io&& io) {
-    io(position_at_build_), io(wall_point_at_build_);
+    io(position_at_build_), io(wall_pose_at_build_);
   }
   long& rebuild_count_ref() { return rebuild_count_; }
   long rebuild_count() const { return rebuild_count_; }
@@ -52,7 +60,7 @@ class NeighborSearch {
   std::vector<uint32_t> cell_start_;  // cells + 1
   std::vector<uint32_t> cell_of_;     // per particle (sorted order)
   std::vector<Vec3> position_at_build_;
-  std::vector<Vec3> wall_point_at_build_;
+  std::vector<WallPose> wall_pose_at_build_;
 };
 
 }  // namespace grainlab

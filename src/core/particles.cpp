@@ -20,6 +20,7 @@ void ParticleStore::permute(const std::vector<uint32_t>& order) {
   apply(torque, order, v3);
   apply(rotation, order, v3);
   apply(initial_position, order, v3);
+  apply(external_force, order, v3);
   apply(radius, order, d);
   apply(inverse_mass, order, d);
   apply(inverse_inertia, order, d);

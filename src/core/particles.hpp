@@ -31,6 +31,9 @@ struct ParticleStore {
   std::vector<uint32_t> id;            // permanent number (0..N-1 in input order)
   std::vector<Vec3> rotation;          // accumulated rotation vector (integral of w dt), rad
   std::vector<Vec3> initial_position;  // m, for displacement output
+  // A force applied from outside the contact law, e.g. a flexible membrane's pressure on a
+  // boundary particle; set by a controller (Simulation::set_external_force), kept across steps.
+  std::vector<Vec3> external_force;  // N
 
   size_t size() const { return position.size(); }
 
@@ -51,6 +54,7 @@ struct ParticleStore {
     id.push_back(particle_id);
     rotation.push_back({});
     initial_position.push_back(x);
+    external_force.push_back({});
   }
 
   // Reorders every field so that new index k holds the particle at old index order[k].
@@ -61,7 +65,7 @@ struct ParticleStore {
   void for_each_field(Io&& io) {
     io(position), io(velocity), io(angular_velocity), io(force), io(torque), io(radius),
         io(inverse_mass), io(inverse_inertia), io(material), io(id), io(rotation),
-        io(initial_position);
+        io(initial_position), io(external_force);
   }
 };
 

@@ -77,6 +77,21 @@ void Simulation::half_kick() {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
 
+void Simulation::clear_external_forces() {
+  std::fill(particles_.external_force.begin(), particles_.external_force.end(), Vec3{});
+  external_forces_ = false;
+}
+
+void Simulation::set_pair_table(PairTable table) {
+  if (table.material_count() != table_.material_count() || !(table.pieces() == pieces_))
+    throw std::invalid_argument(
+        "set_pair_table: the materials and the pieces of the contact law must not change");
+  table_ = std::move(table);
+  refresh_contact_constants();
+}
+
+// The force sources, in the order they are summed: pair contacts, wall contacts, then (in
+// gather) gravity and the per-particle external forces.
 void Simulation::compute_forces(double drift) {
   compute_pair_forces(drift);
   compute_wall_forces(drift);
@@ -84,13 +99,15 @@ void Simulation::compute_forces(double drift) {
 }
 
 // Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
-// where it is second (opposite force) and its wall contacts.
+// where it is second (opposite force), its wall contacts and its external force (only while
+// some particle has one, so that a run without them adds nothing, not even a zero).
 void Simulation::gather() {
   ParticleStore& p = particles_;
   const PairContacts& c = pairs_;
   const WallContacts& wc = wall_contacts_;
   const Vec3 g = settings_.gravity;
   const long n = static_cast<long>(p.size());
+  const bool external = external_forces_;
 #pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
@@ -108,6 +125,7 @@ void Simulation::gather() {
       f += wc.force_on_particle[e];
       t += wc.torque_on_particle[e];
     }
+    if (external) f += p.external_force[i];
     p.force[i] = f;
     p.torque[i] = t;
   }
@@ -200,7 +218,7 @@ std::vector<Wall> read_walls(StateReader& in) {
   return walls;
 }
 
-constexpr uint64_t state_magic = 0x67726e6c61623031;  // "grnlab01"
+constexpr uint64_t state_magic = 0x67726e6c61623032;  // "grnlab02"
 
 }  // namespace
 
@@ -217,7 +235,7 @@ void Simulation::save_state(StateWriter& out) const {
   const_cast<NeighborSearch&>(neighbors_).for_each_field(write);
   out.value(const_cast<NeighborSearch&>(neighbors_).rebuild_count_ref());
   out.value(time_), out.value(step_count_), out.value(max_overlap_fraction_),
-      out.value(max_speed2_);
+      out.value(max_speed2_), out.value(external_forces_);
 }
 
 Simulation::Simulation(StateReader& in, PairTable table)
@@ -241,6 +259,7 @@ Simulation::Simulation(StateReader& in, PairTable table)
   neighbors_.rebuild_count_ref() = in.value<long>();
   time_ = in.value<double>(), step_count_ = in.value<long>();
   max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
+  external_forces_ = in.value<bool>();
 }
 
 }  // namespace grainlab

@@ -52,24 +52,34 @@ class Simulation {
   void attach(StepListener& listener) { listeners_.push_back(&listener); }
   void detach(StepListener& listener) { std::erase(listeners_, &listener); }
 
-  // Commands (between steps).
+  // Commands, between steps (from a listener's before_step or from the driving loop). Particle
+  // indices are storage indices, which change at each neighbour-list rebuild (see particles().id).
   void set_wall_velocity(size_t wall, const Vec3& velocity) { walls_[wall].velocity = velocity; }
+  void set_wall_point(size_t wall, const Vec3& point) { walls_[wall].point = point; }
   void set_wall_external_force(size_t wall, const Vec3& force) {
     walls_[wall].external_force = force;
   }
+  void set_particle_velocity(size_t particle, const Vec3& velocity) {
+    particles_.velocity[particle] = velocity;
+  }
+  // The per-particle external force source (a membrane): kept until changed or cleared.
+  void set_external_force(size_t particle, const Vec3& force) {
+    particles_.external_force[particle] = force;
+    external_forces_ = true;
+  }
+  void clear_external_forces();
+  // Replaces the material-pair constants (e.g. the friction while compacting); the table must
+  // have the same materials and the same optional pieces of the contact law as the one given at
+  // construction (std::invalid_argument otherwise).
+  void set_pair_table(PairTable table);
 
   double time() const { return time_; }
   long step_count() const { return step_count_; }
   const SimulationSettings& settings() const { return settings_; }
+  // Read-only views.
   const ParticleStore& particles() const { return particles_; }
-  ParticleStore& particles() { return particles_; }
-  std::vector<Wall>& walls() { return walls_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const PairTable& pair_table() const { return table_; }
-  // Material-pair constants may change between steps (e.g. friction during compaction); call
-  // pair_table_changed() afterwards. Which optional pieces exist is fixed at construction.
-  PairTable& pair_table() { return table_; }
-  void pair_table_changed() { refresh_contact_constants(); }
   const PairContacts& pair_contacts() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }
@@ -103,7 +113,23 @@ class Simulation {
   long step_count_ = 0;
   double max_overlap_fraction_ = 0.0;
   double max_speed2_ = 0.0;
+  bool external_forces_ = false;  // some particle has a non-zero external force
   std::vector<StepListener*> listeners_;
+};
+
+// Attaches a listener for the lifetime of this object (also when an exception leaves the scope).
+class ScopedListener {
+ public:
+  ScopedListener(Simulation& sim, StepListener& listener) : sim_(sim), listener_(listener) {
+    sim_.attach(listener_);
+  }
+  ~ScopedListener() { sim_.detach(listener_); }
+  ScopedListener(const ScopedListener&) = delete;
+  ScopedListener& operator=(const ScopedListener&) = delete;
+
+ private:
+  Simulation& sim_;
+  StepListener& listener_;
 };
 
 }  // namespace grainlab

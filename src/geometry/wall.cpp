@@ -1,6 +1,7 @@
 #include "geometry/wall.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace grainlab {
@@ -72,6 +73,24 @@ void finish_wall_geometry(Wall& w) {
       if (!(w.radius > 0.0)) throw std::invalid_argument("radius must be > 0");
       break;
   }
+}
+
+WallPose pose_of(const Wall& w) {
+  return {w.point, w.normal, w.axis_u, w.axis_v, w.axis, w.half_u, w.half_v, w.radius};
+}
+
+double surface_displacement(const WallPose& b, const Wall& w) {
+  const double moved = norm(w.point - b.point);
+  switch (w.shape) {
+    case WallShape::plane:
+      return w.normal == b.normal ? moved : INFINITY;
+    case WallShape::rectangle:
+      return moved + std::abs(w.half_u - b.half_u) + std::abs(w.half_v - b.half_v) +
+             w.half_u * norm(w.axis_u - b.axis_u) + w.half_v * norm(w.axis_v - b.axis_v);
+    case WallShape::cylinder:
+      return w.axis == b.axis ? moved + std::abs(w.radius - b.radius) : INFINITY;
+  }
+  return INFINITY;
 }
 
 const char* shape_name(WallShape s) {

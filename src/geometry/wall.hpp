@@ -49,6 +49,19 @@ struct WallGap {
 
 WallGap wall_gap(const Wall& wall, const Vec3& centre);
 
+// The geometry of a wall at one moment (what the neighbour list was built against).
+struct WallPose {
+  Vec3 point, normal, axis_u, axis_v, axis;
+  double half_u = 0.0, half_v = 0.0, radius = 0.0;
+};
+WallPose pose_of(const Wall& wall);
+
+// An upper bound on how far any point of the wall's surface has moved since `before`, m: the
+// translation plus what a change of size or a turn moves the farthest point of a rectangle by
+// (its half-sizes times the change of its in-plane axes). An infinite plane or cylinder that
+// has turned at all has moved without bound (infinity).
+double surface_displacement(const WallPose& before, const Wall& now);
+
 // True when a sphere centre lies on the side of the wall where particles belong (for the
 // one-sided plane and the cylinder); rectangles are two-sided and always accept.
 bool inside_wall(const Wall& wall, const Vec3& centre);

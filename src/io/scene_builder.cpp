@@ -242,7 +242,7 @@ SimulationSettings simulation_settings(const SceneConfig& c, const TimeStepChoic
   s.gravity = c.gravity;
   double max_radius = 0.0;
   for (double r : particles.radius) max_radius = std::max(max_radius, r);
-  s.skin = c.skin ? *c.skin : 0.2 * max_radius;  // a tenth of the largest diameter
+  s.skin = c.skin ? *c.skin : verlet_skin(2.0 * max_radius);
   s.max_speed = c.max_speed;
   return s;
 }

@@ -59,7 +59,7 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   settings.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r).time_step;
   settings.dt_fraction = settings.time_step / t_c;
   settings.gravity = {0.0, 0.0, -g};
-  settings.skin = 0.2 * r;
+  settings.skin = verlet_skin(2.0 * r);
   Simulation sim(std::move(p), walls, table, settings);
   out.time_step = settings.time_step;
   out.dt_fraction = settings.dt_fraction;

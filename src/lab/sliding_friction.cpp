@@ -41,7 +41,7 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
   out.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r_min).time_step;
   out.dt_fraction = out.time_step / t_c;  // below s.dt_fraction if stability lowered it
   out.gravity = {0.0, 0.0, -s.gravity};
-  out.skin = 0.1 * s.diameter;
+  out.skin = verlet_skin(s.diameter);
   return out;
 }
 
@@ -134,14 +134,14 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   double anchor = sim.walls()[k].point.x, anchor_speed = 0.0;
   const double guide_y = sim.walls()[k].point.y;
   auto step = [&] {
-    Wall& w = sim.walls()[k];
-    w.external_force = {
-        s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x),
-        0.0, -load};
+    const Wall& w = sim.walls()[k];
+    sim.set_wall_external_force(k, {s.spring_stiffness * (anchor - w.point.x) +
+                                        rope_damping * (anchor_speed - w.velocity.x),
+                                    0.0, -load});
     sim.step();
-    Wall& after = sim.walls()[k];
-    after.velocity.y = 0.0;
-    after.point.y = guide_y;
+    const Wall& after = sim.walls()[k];
+    sim.set_wall_velocity(k, {after.velocity.x, 0.0, after.velocity.z});
+    sim.set_wall_point(k, {after.point.x, guide_y, after.point.z});
   };
   // Load: the slider settles on the bed under P with the rope anchored where it starts.
   const double dt = sim.settings().time_step;

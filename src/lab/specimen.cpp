@@ -11,14 +11,14 @@
 
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
-#include "control/stress_servo.hpp"
+#include "control/box_controller.hpp"
 #include "core/random_insertion.hpp"
 #include "core/simulation.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
-#include "lab/cuboid_box.hpp"
 #include "lab/interrupt.hpp"
+#include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
@@ -90,21 +90,14 @@ void set_compaction_contacts(PairTable& table, const PairTable& original, const 
 
 HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
                          const std::function<bool(const HoldState&)>& on_check) {
-  const double dt = sim.settings().time_step, t_end = sim.time() + c.max_time;
-  std::array<StressServo, 6> servos;
-  for (StressServo& servo : servos) servo = StressServo(ServoSettings{c.confining_stress});
+  const double t_end = sim.time() + c.max_time;
+  const AxisControl held{AxisMode::stress, c.confining_stress};
+  BoxController servo(
+      BoxControlSettings{{held, held, held}, ServoRegime::compaction, 0.0, c.max_strain_rate});
+  const ScopedListener attached(sim, servo);
   HoldState state;
   while (sim.time() < t_end) {
-    for (long n = 0; n < 200; ++n) {
-      const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
-      for (int k = 0; k < 6; ++k) {
-        servos[k].set_max_speed(c.max_strain_rate * 0.5 * size[k / 2]);
-        set_inward_speed(sim.walls(), k,
-                         servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
-                                          sim.walls()[k].contact_stiffness, dt));
-      }
-      sim.step();
-    }
+    sim.advance(200);
     state.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
     state.max_stress_error = 0.0;
     for (int k = 0; k < 6; ++k)
@@ -118,7 +111,7 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
       break;
     }
   }
-  for (Wall& w : sim.walls()) w.velocity = {};
+  stop_walls(sim);
   return state;
 }
 
@@ -153,7 +146,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
        stable_time_step(s.dt_fraction * t_c, table, s.bead_material, r_min).time_step,
        stable_time_step(s.dt_fraction * t_c, measured_friction, s.bead_material, r_min).time_step});
   settings.dt_fraction = settings.time_step / t_c;  // below s.dt_fraction if stability lowered it
-  settings.skin = 0.1 * s.diameter;
+  settings.skin = verlet_skin(s.diameter);
   Simulation sim(std::move(particles),
                  cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);
@@ -171,8 +164,9 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
           // Target reached, or the frictionless packing settled below it: it cannot get denser
           // at this stress, so the target is out of reach (reported).
           out.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
-          set_compaction_contacts(sim.pair_table(), original, s, -1.0, s.compaction_restitution);
-          sim.pair_table_changed();
+          PairTable restored = sim.pair_table();
+          set_compaction_contacts(restored, original, s, -1.0, s.compaction_restitution);
+          sim.set_pair_table(std::move(restored));
           friction_restored = true;
         }
         if (progress)

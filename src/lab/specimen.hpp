@@ -56,7 +56,7 @@ struct Specimen {
   double inserted_solid_fraction = 0.0;
 };
 
-// Holds the six walls of a cuboid specimen (lab/cuboid_box.hpp) at an isotropic stress by servo
+// Holds the six walls of a cuboid specimen (geometry/cuboid_box.hpp) at an isotropic stress by servo
 // control until the wall stresses are within stress_tolerance of the target and the unbalanced
 // force ratio is below unbalanced_tolerance, or max_time more has been simulated. `on_check` runs
 // every 200 steps and returns whether the run may stop there (e.g. false while the compaction

@@ -19,7 +19,7 @@
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/toml_reader.hpp"
-#include "lab/cuboid_box.hpp"
+#include "measure/boundary.hpp"
 #include "lab/interrupt.hpp"
 #include "lab/triaxial_config.hpp"
 #include "lab/triaxial_plot.hpp"
@@ -169,7 +169,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   const std::string time_step_limited_by = step.limited_by;
   settings.time_step = step.time_step;
   settings.dt_fraction = settings.time_step / collision_duration_of_beads;
-  settings.skin = 0.1 * sp.diameter;
+  settings.skin = verlet_skin(sp.diameter);
   ShearRun run{
       Simulation(specimen.particles,
                  cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material),

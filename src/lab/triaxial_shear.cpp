@@ -8,16 +8,17 @@
 #include <fstream>
 #include <sstream>
 
+#include "control/box_controller.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
-#include "lab/cuboid_box.hpp"
 #include "lab/interrupt.hpp"
+#include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
 namespace {
 
-constexpr uint64_t checkpoint_magic = 0x67726e6c74726932;  // "grnltri2"
+constexpr uint64_t checkpoint_magic = 0x67726e6c74726933;  // "grnltri3"
 
 // Adds the Love-Weber and boundary-average diagonals to the interval sums.
 void add_specimen_stresses(ShearRun& run) {
@@ -138,17 +139,18 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s,
            Progress& progress) {
   Simulation& sim = run.sim;
   ShearProgress& p = run.progress;
-  std::array<StressServo, 4> servos;
-  for (int k = 0; k < 4; ++k) {
-    servos[k] = StressServo(
-        ServoSettings{p.confining_stress, 2.0 * p.platen_speed, holding_proportional_gain});
-    servos[k].set_integral(p.servo_integral[k]);
-  }
-  const double dt = sim.settings().time_step;
+  // The lateral boundary held at sigma_3, the platens driven at the platen speed.
+  const AxisControl lateral{AxisMode::stress, p.confining_stress};
+  BoxController control(
+      BoxControlSettings{{lateral, lateral, {AxisMode::speed, 0.0, p.platen_speed}},
+                         ServoRegime::holding,
+                         2.0 * p.platen_speed});
+  control.set_integrals(p.servo_integral);
+  const ScopedListener attached(sim, control);
   const auto session_start = std::chrono::steady_clock::now();
   auto last_checkpoint = session_start;
   auto checkpoint = [&] {
-    for (int k = 0; k < 4; ++k) p.servo_integral[k] = servos[k].integral();
+    p.servo_integral = control.integrals();
     const double before = p.wall_time_before;
     p.wall_time_before +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
@@ -185,12 +187,6 @@ void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >
             checkpoint_interval_s)
       checkpoint();
-    for (int k = 0; k < 4; ++k)
-      set_inward_speed(sim.walls(), k,
-                       servos[k].update(wall_stress(sim.walls(), k), wall_area(sim.walls(), k),
-                                        sim.walls()[k].contact_stiffness, dt));
-    set_inward_speed(sim.walls(), bottom, p.platen_speed);
-    set_inward_speed(sim.walls(), top, p.platen_speed);
     sim.step();
     accumulate(run);
   }

@@ -6,7 +6,6 @@
 #include <array>
 #include <string>
 
-#include "control/stress_servo.hpp"
 #include "core/simulation.hpp"
 #include "io/progress.hpp"
 
@@ -27,7 +26,7 @@ struct ShearProgress {  // plain values, saved as they are
   double wall_time_before = 0;     // s spent in earlier sessions of this run
   double vtk_strain_interval = 0;  // 0: no snapshots
   long next_vtk = 0;
-  std::array<double, 4> servo_integral{};
+  std::array<double, 6> servo_integral{};
   // Averages over the current output interval (a laboratory load cell integrates too): the six
   // wall stresses every step, the Love-Weber and boundary-average diagonals every
   // `stress_sample_steps` steps (the same steps, so they differ only by the particles' inertia).

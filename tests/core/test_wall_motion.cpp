@@ -54,7 +54,7 @@ TEST(BlowUp, NanVelocityStopsTheRunWithAdvice) {
   p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
   Simulation sim(std::move(p), {plane_wall({}, {0, 0, 1})}, two_material_table(0.9, 0.1),
                  settings_for(1e-3, 0.9, 0.1));
-  sim.particles().velocity[0].x = std::nan("");
+  sim.set_particle_velocity(0, {std::nan(""), 0.0, 0.0});
   try {
     sim.step();
     FAIL() << "a NaN velocity must stop the run";

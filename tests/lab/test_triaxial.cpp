@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "lab/cuboid_box.hpp"
+#include "measure/boundary.hpp"
 #include "lab/specimen.hpp"
 #include "measure/specimen_state.hpp"
 
