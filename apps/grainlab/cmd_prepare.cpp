@@ -6,16 +6,17 @@
 #include "command.hpp"
 #include "io/config_error.hpp"
 #include "lab/interrupt.hpp"
-#include "lab/triaxial.hpp"
+#include "lab/lab_test.hpp"
 
 namespace grainlab::app {
 
 Command add_prepare_command(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto config = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand(
-      "prepare", "prepare (compress) the specimen of a triaxial config and save it");
-  sub->add_option("config", *config, "triaxial test configuration (TOML)")->required();
+  CLI::App* sub = app.add_subcommand("prepare",
+                                     "prepare (compress) the specimen of an element-test config "
+                                     "(triaxial, oedometer) and save it");
+  sub->add_option("config", *config, "element-test configuration (TOML)")->required();
   sub->add_option("--out", options->out_dir, "output directory (specimen.csv, specimen.json)")
       ->required();
   sub->add_flag("--overwrite", options->overwrite,

@@ -10,7 +10,6 @@
 #include "io/toml_reader.hpp"
 #include "lab/interrupt.hpp"
 #include "lab/lab_test.hpp"
-#include "lab/triaxial.hpp"
 
 namespace grainlab::app {
 
@@ -24,8 +23,9 @@ Command add_run_command(CLI::App& app) {
       "scene or test configuration (TOML; docs/scene-schema.md, docs/lab-tests.md)");
   CLI::Option* out_option =
       sub->add_option("--out", options->out_dir, "output directory (created; must be empty)");
-  sub->add_option("--resume", *resume,
-                  "continue an interrupted triaxial run from DIR/checkpoint.bin")
+  sub->add_option(
+         "--resume", *resume,
+         "continue an interrupted element test (triaxial, oedometer) from DIR/checkpoint.bin")
       ->excludes(config_option)
       ->excludes(out_option);
   sub->add_flag("--overwrite", options->overwrite,
@@ -43,7 +43,7 @@ Command add_run_command(CLI::App& app) {
               if (options->threads > 0) omp_set_num_threads(options->threads);
               if (!resume->empty()) {
                 options->out_dir = *resume;
-                resume_triaxial(*options);
+                resume_lab_test(*options);
               } else {
                 // A config with a [test] table is a virtual laboratory test (src/lab/).
                 const toml::table root = parse_toml_file(*config);

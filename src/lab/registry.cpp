@@ -1,12 +1,25 @@
 #include <fmt/format.h>
 
+#include <chrono>
+
+#include "grainlab/version.hpp"
 #include "io/config_error.hpp"
+#include "io/output_files.hpp"
 #include "lab/flat_throw.hpp"
+#include "lab/interrupt.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/oedometer.hpp"
 #include "lab/sliding_friction.hpp"
 #include "lab/triaxial.hpp"
 
 namespace grainlab {
+
+namespace {
+template <class Config, Config (*read)(const std::string&, const toml::table&)>
+ElementTestConfig element_config(const std::string& path, const toml::table& root) {
+  return read(path, root);
+}
+}  // namespace
 
 const std::vector<LabTestEntry>& lab_tests() {
   static const std::vector<LabTestEntry> table{
@@ -15,12 +28,17 @@ const std::vector<LabTestEntry>& lab_tests() {
        run_sliding_friction},
       {"triaxial",
        "triaxial test of a cuboid specimen with servo-held lateral walls (DESIGN.md sec. 5)",
-       run_triaxial},
+       run_triaxial, element_config<TriaxialConfig, read_triaxial_config>, resume_triaxial},
+      {"oedometer",
+       "one-dimensional compression between fixed lateral walls: constrained modulus and K0",
+       run_oedometer, element_config<OedometerConfig, read_oedometer_config>, resume_oedometer},
   };
   return table;
 }
 
-void run_lab_test(const std::string& path, const toml::table& root, const RunOptions& options) {
+namespace {
+
+const LabTestEntry& entry_for(const std::string& path, const toml::table& root) {
   const toml::node* test = root.get("test");
   std::string known;
   for (const LabTestEntry& e : lab_tests())
@@ -31,10 +49,62 @@ void run_lab_test(const std::string& path, const toml::table& root, const RunOpt
     throw ConfigError(fmt::format("{} line {}: test.type: missing; expected one of: {}", path,
                                   test ? test->source().begin.line : 0, known));
   for (const LabTestEntry& e : lab_tests())
-    if (*type->value<std::string>() == e.type) return e.run(path, root, options);
+    if (*type->value<std::string>() == e.type) return e;
   throw ConfigError(fmt::format("{} line {}: test.type: unknown test \"{}\"; expected one of: {}",
                                 path, type->source().begin.line, *type->value<std::string>(),
                                 known));
+}
+
+}  // namespace
+
+void run_lab_test(const std::string& path, const toml::table& root, const RunOptions& options) {
+  entry_for(path, root).run(path, root, options);
+}
+
+void resume_lab_test(const RunOptions& options) {
+  const std::string checkpoint = options.out_dir + "/checkpoint.bin";
+  std::string type, path, text;
+  peek_checkpoint(checkpoint, type, path, text);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", checkpoint,
+                                  e.description()));
+  }
+  const LabTestEntry& e = entry_for(path, root);
+  if (type != e.type || !e.resume)
+    throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, type));
+  const ElementTestConfig c = e.element_config(path, root);
+  install_interrupt_handler();
+  e.resume(load_checkpoint(checkpoint, c.table), root, options);
+}
+
+void run_prepare(const std::string& path, const RunOptions& options) {
+  const toml::table root = parse_toml_file(path);
+  const LabTestEntry& e = entry_for(path, root);
+  if (!e.element_config)
+    throw ConfigError(
+        fmt::format("{}: test.type: a {} test has no specimen to prepare (element "
+                    "tests: triaxial, oedometer)",
+                    path, e.type));
+  const ElementTestConfig c = e.element_config(path, root);
+  prepare_output_dir(options.out_dir, options.overwrite);
+  install_interrupt_handler();
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress("grainlab prepare", options.quiet);
+  const Specimen s = prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
+  save_specimen(options.out_dir + "/specimen.csv", s);
+  nlohmann::json j = specimen_json(s);
+  j["grainlab_version"] = version_string;
+  j["config_file"] = path;
+  j["confining_stress_Pa"] = c.settings.specimen.confining_stress;
+  j["wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(options.out_dir + "/specimen.json", j.dump(2) + "\n");
+  progress.finish(fmt::format("solid fraction {:.4f}, box {:.2f} x {:.2f} x {:.2f} mm",
+                              s.solid_fraction, 1e3 * (s.high.x - s.low.x),
+                              1e3 * (s.high.y - s.low.y), 1e3 * (s.high.z - s.low.z)));
 }
 
 }  // namespace grainlab

@@ -56,11 +56,11 @@ struct Specimen {
   double inserted_solid_fraction = 0.0;
 };
 
-// Holds the six walls of a cuboid specimen (geometry/cuboid_box.hpp) at an isotropic stress by servo
-// control until the wall stresses are within stress_tolerance of the target and the unbalanced
-// force ratio is below unbalanced_tolerance, or max_time more has been simulated. `on_check` runs
-// every 200 steps and returns whether the run may stop there (e.g. false while the compaction
-// friction is still being steered).
+// Holds the six walls of a cuboid specimen (geometry/cuboid_box.hpp) at an isotropic stress by
+// servo control until the wall stresses are within stress_tolerance of the target and the
+// unbalanced force ratio is below unbalanced_tolerance, or max_time more has been simulated.
+// `on_check` runs every 200 steps and returns whether the run may stop there (e.g. false while the
+// compaction friction is still being steered).
 struct HoldCriteria {
   double confining_stress;  // Pa
   double max_strain_rate;   // 1/s, wall speed cap

@@ -6,34 +6,23 @@
 
 #include <toml++/toml.h>
 
-#include <optional>
 #include <string>
 
 #include "io/scene_run.hpp"
-#include "lab/specimen.hpp"
+#include "lab/element_test.hpp"
 
 namespace grainlab {
 
-struct TriaxialSettings {
-  SpecimenSettings specimen;
-  std::optional<std::string> specimen_file;  // a prepared specimen to reuse
-  std::optional<double> platen_speed;        // m/s each platen; empty: from the inertial number
-  double max_inertial_number = 1e-3;
+struct TriaxialConfig : ElementTestConfig {
   double max_axial_strain = 0.15;
-  double output_strain_interval = 0.001;
-  bool vtk = false;
-  double vtk_strain_interval = 0.01;
-  double checkpoint_interval = 300.0;  // s of wall time between checkpoints
 };
+
+TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& root);
 
 void run_triaxial(const std::string& config_path, const toml::table& root,
                   const RunOptions& options);
 
-// `grainlab run --resume DIR`: continues an interrupted triaxial run from DIR/checkpoint.bin and
-// produces the same files as an uninterrupted run.
-void resume_triaxial(const RunOptions& options);
-
-// `grainlab prepare CONFIG --out DIR`: the preparation of a triaxial config alone.
-void run_prepare(const std::string& config_path, const RunOptions& options);
+// Continues an interrupted run from its checkpoint (grainlab run --resume DIR).
+void resume_triaxial(ElementRun run, const toml::table& root, const RunOptions& options);
 
 }  // namespace grainlab

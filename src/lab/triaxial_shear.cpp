@@ -2,28 +2,63 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
-#include "control/box_controller.hpp"
-#include "io/config_error.hpp"
 #include "io/output_files.hpp"
-#include "lab/interrupt.hpp"
 #include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
 namespace {
 
-constexpr uint64_t checkpoint_magic = 0x67726e6c74726933;  // "grnltri3"
+constexpr const char* header =
+    "time_s,axial_strain,lateral_strain_x,lateral_strain_y,volumetric_strain,"
+    "axial_stress_walls_Pa,lateral_stress_x_walls_Pa,lateral_stress_y_walls_Pa,"
+    "axial_stress_particles_Pa,lateral_stress_x_particles_Pa,lateral_stress_y_particles_Pa,"
+    "axial_stress_boundary_Pa,lateral_stress_x_boundary_Pa,lateral_stress_y_boundary_Pa,"
+    "deviator_stress_Pa,mean_stress_Pa,stress_ratio,solid_fraction,coordination_number,"
+    "inertial_number,unbalanced_force_ratio";
+
+BoxControlSettings shear_control(const ShearProgress& p) {
+  // The lateral boundary held at sigma_3, the platens driven at the platen speed.
+  const AxisControl lateral{AxisMode::stress, p.confining_stress};
+  return {{lateral, lateral, AxisControl{AxisMode::speed, 0.0, p.platen_speed}},
+          ServoRegime::holding,
+          2.0 * p.platen_speed};
+}
+
+}  // namespace
+
+TriaxialShear::TriaxialShear(ElementRun& run, const ShearProgress& progress, const std::string& dir)
+    : p_(progress), dir_(dir), control_(shear_control(progress)), attached_(run.sim, control_) {
+  control_.set_integrals(p_.servo_integral);
+}
+
+ShearProgress TriaxialShear::restore(const ElementRun& run) {
+  StateReader in(run.test_state);
+  return in.value<ShearProgress>();
+}
+
+void TriaxialShear::save(ElementRun& run) const {
+  ShearProgress p = p_;
+  p.servo_integral = control_.integrals();
+  StateWriter out;
+  out.value(p);
+  run.test_state = out.bytes();
+}
+
+const char* TriaxialShear::curve_header() const {
+  return header;
+}
+
+std::string TriaxialShear::position() const {
+  return fmt::format("axial strain {:.2f} %", 100 * axial_strain_);
+}
 
 // Adds the Love-Weber and boundary-average diagonals to the interval sums.
-void add_specimen_stresses(ShearRun& run) {
-  const Simulation& sim = run.sim;
-  ShearProgress& p = run.progress;
+void TriaxialShear::add_specimen_stresses(const Simulation& sim) {
+  ShearProgress& p = p_;
   const Vec3 lo = box_low(sim.walls()), hi = box_high(sim.walls());
   const double volume = box_volume(sim.walls());
   const Tensor3 particles = love_weber_stress(sim, volume);
@@ -35,29 +70,49 @@ void add_specimen_stresses(ShearRun& run) {
 }
 
 // Adds this step's stresses to the running sums of the output interval.
-void accumulate(ShearRun& run) {
-  Simulation& sim = run.sim;
-  ShearProgress& p = run.progress;
+void TriaxialShear::after_step(ElementRun& run) {
+  const Simulation& sim = run.sim;
+  ShearProgress& p = p_;
   for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] += wall_stress(sim.walls(), k);
   ++p.wall_samples;
   if (p.step % stress_sample_steps == 0) {
-    add_specimen_stresses(run);
+    add_specimen_stresses(sim);
     ++p.particle_samples;
+  }
+  ++p.step;
+}
+
+void TriaxialShear::observe(ElementRun& run, Progress& progress) {
+  ShearProgress& p = p_;
+  const Vec3 size = box_size(run.sim.walls());
+  const double axial_strain = (p.size0.z - size.z) / p.size0.z;
+  axial_strain_ = axial_strain;
+  if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 || p.step == p.total_steps) {
+    ++p.next_output;
+    record(run);
+    progress.update(static_cast<double>(p.step) / p.total_steps,
+                    fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
+                                100 * axial_strain, 1e-3 * p.last_axial));
+  }
+  if (p.vtk_strain_interval > 0 &&
+      (axial_strain >= p.next_vtk * p.vtk_strain_interval - 1e-12 || p.step == p.total_steps)) {
+    ++p.next_vtk;
+    snapshot(run);
   }
 }
 
 // One row of curve.csv (stresses averaged over the interval since the last row; at the start
 // the instantaneous state), and the running peaks and errors.
-void record(ShearRun& run) {
+void TriaxialShear::record(ElementRun& run) {
   Simulation& sim = run.sim;
-  ShearProgress& p = run.progress;
+  ShearProgress& p = p_;
   const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
   const double axial_strain = (p.size0.z - size.z) / p.size0.z;
   const double volume = size.x * size.y * size.z, volume0 = p.size0.x * p.size0.y * p.size0.z;
   if (p.wall_samples == 0) {  // first row: the state itself
     for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] = wall_stress(sim.walls(), k);
     p.wall_samples = 1;
-    add_specimen_stresses(run);
+    add_specimen_stresses(sim);
     p.particle_samples = 1;
   }
   std::array<double, 6> w;
@@ -110,14 +165,15 @@ void record(ShearRun& run) {
 
 // A ParaView snapshot: particles with velocity, displacement since the start, rotation and
 // contact count; the walls; the .pvd index.
-void snapshot(ShearRun& run, const std::string& dir) {
+void TriaxialShear::snapshot(ElementRun& run) {
+  const std::string& dir = dir_;
   const Simulation& sim = run.sim;
   std::filesystem::create_directories(dir + "/vtk");
-  const std::string name = fmt::format("vtk/particles_{:08d}.vtu", run.progress.step);
+  const std::string name = fmt::format("vtk/particles_{:08d}.vtu", p_.step);
   const std::vector<int> contacts = contacts_per_particle(sim);
   write_file_atomically(dir + "/" + name, particles_vtu(sim.particles(), &contacts));
-  const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", run.progress.step);
-  write_file_atomically(dir + "/" + walls, walls_vtu(sim.walls(), 2.0 * run.progress.size0.z));
+  const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", p_.step);
+  write_file_atomically(dir + "/" + walls, walls_vtu(sim.walls(), 2.0 * p_.size0.z));
   run.vtk_index +=
       fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", sim.time(), name);
   run.vtk_index +=
@@ -126,130 +182,6 @@ void snapshot(ShearRun& run, const std::string& dir) {
       dir + "/particles.pvd",
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
           run.vtk_index + "  </Collection>\n</VTKFile>\n");
-}
-
-void write_curve(const ShearRun& run, const std::string& dir) {
-  write_file_atomically(dir + "/curve.csv.partial",
-                        std::string(curve_header) + "\n" + run.curve_rows);
-}
-
-}  // namespace
-
-void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s,
-           Progress& progress) {
-  Simulation& sim = run.sim;
-  ShearProgress& p = run.progress;
-  // The lateral boundary held at sigma_3, the platens driven at the platen speed.
-  const AxisControl lateral{AxisMode::stress, p.confining_stress};
-  BoxController control(
-      BoxControlSettings{{lateral, lateral, {AxisMode::speed, 0.0, p.platen_speed}},
-                         ServoRegime::holding,
-                         2.0 * p.platen_speed});
-  control.set_integrals(p.servo_integral);
-  const ScopedListener attached(sim, control);
-  const auto session_start = std::chrono::steady_clock::now();
-  auto last_checkpoint = session_start;
-  auto checkpoint = [&] {
-    p.servo_integral = control.integrals();
-    const double before = p.wall_time_before;
-    p.wall_time_before +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
-    write_curve(run, dir);
-    save_checkpoint(run, dir + "/checkpoint.bin");
-    p.wall_time_before = before;
-    last_checkpoint = std::chrono::steady_clock::now();
-  };
-  for (;; ++p.step) {
-    const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
-    const double axial_strain = (p.size0.z - size.z) / p.size0.z;
-    if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 ||
-        p.step == p.total_steps) {
-      ++p.next_output;
-      record(run);
-      progress.update(static_cast<double>(p.step) / p.total_steps,
-                      fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
-                                  100 * axial_strain, 1e-3 * p.last_axial));
-    }
-    if (p.vtk_strain_interval > 0 &&
-        (axial_strain >= p.next_vtk * p.vtk_strain_interval - 1e-12 || p.step == p.total_steps)) {
-      ++p.next_vtk;
-      snapshot(run, dir);
-    }
-    if (p.step == p.total_steps) break;
-    if (interrupt_requested()) {
-      checkpoint();
-      throw Interrupted(
-          fmt::format("interrupted at axial strain {:.2f} %; checkpoint written, continue with: "
-                      "grainlab run --resume {}",
-                      100 * axial_strain, dir));
-    }
-    if (p.step % 1000 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >
-            checkpoint_interval_s)
-      checkpoint();
-    sim.step();
-    accumulate(run);
-  }
-  p.wall_time_before +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
-  write_curve(run, dir);
-  std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
-  std::error_code ec;
-  std::filesystem::remove(dir + "/checkpoint.bin", ec);
-}
-
-void save_checkpoint(const ShearRun& run, const std::string& path) {
-  StateWriter out;
-  out.value(checkpoint_magic);
-  out.text(run.config_path);
-  out.text(run.config_text);
-  out.value(run.progress);
-  out.text(run.curve_rows);
-  out.text(run.run_info);
-  out.text(run.vtk_index);
-  run.sim.save_state(out);
-  write_file_atomically(path, out.bytes());
-}
-
-namespace {
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
-
-void peek_checkpoint_config(const std::string& path, std::string& config_path,
-                            std::string& config_text) {
-  StateReader in(read_all(path));
-  try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab triaxial checkpoint");
-    config_path = in.text();
-    config_text = in.text();
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: {}", path, e.what()));
-  }
-}
-
-ShearRun load_checkpoint(const std::string& path, PairTable table) {
-  StateReader in(read_all(path));
-  try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab triaxial checkpoint");
-    std::string config_path = in.text(), config_text = in.text();
-    const ShearProgress progress = in.value<ShearProgress>();
-    std::string rows = in.text(), info = in.text(), vtk = in.text();
-    Simulation sim(in, std::move(table));
-    if (!in.at_end()) throw std::runtime_error("trailing data");
-    return ShearRun{std::move(sim),        progress,       std::move(rows),
-                    std::move(info),       std::move(vtk), std::move(config_path),
-                    std::move(config_text)};
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
-  }
 }
 
 }  // namespace grainlab

@@ -1,13 +1,14 @@
-// The shearing stage of the triaxial test as a resumable loop: everything it carries from step
-// to step (the simulation, the servo integrals, the running peaks and error sums, the curve so
-// far) is in ShearRun, which a checkpoint saves whole and restores exactly.
+// The loading stage of the triaxial test: the lateral boundary held at sigma_3 and the platens
+// driven (control/box_controller.hpp), a curve.csv row every output strain interval with the
+// stresses averaged over the interval, the running peaks and errors. Everything it carries from
+// step to step is in ShearProgress, which a checkpoint saves whole (ElementRun::test_state).
 #pragma once
 
 #include <array>
 #include <string>
 
-#include "core/simulation.hpp"
-#include "io/progress.hpp"
+#include "control/box_controller.hpp"
+#include "lab/element_test.hpp"
 
 namespace grainlab {
 
@@ -23,7 +24,6 @@ struct ShearProgress {  // plain values, saved as they are
   // the axial load the lateral walls' friction carries).
   double worst_agreement = 0, platen_excess_sum = 0;
   long platen_excess_rows = 0;
-  double wall_time_before = 0;     // s spent in earlier sessions of this run
   double vtk_strain_interval = 0;  // 0: no snapshots
   long next_vtk = 0;
   std::array<double, 6> servo_integral{};
@@ -38,32 +38,31 @@ struct ShearProgress {  // plain values, saved as they are
 
 inline constexpr long stress_sample_steps = 50;
 
-struct ShearRun {
-  Simulation sim;
-  ShearProgress progress;
-  std::string curve_rows;  // curve.csv rows written so far (without header)
-  std::string run_info;    // JSON text of what the summary needs from before the shearing
-  std::string vtk_index;   // <DataSet> lines of particles.pvd so far
-  std::string config_path, config_text;
+class TriaxialShear : public LoadingStage {
+ public:
+  // A fresh stage (progress set up by the caller) or one restored from run.test_state.
+  TriaxialShear(ElementRun& run, const ShearProgress& progress, const std::string& dir);
+  static ShearProgress restore(const ElementRun& run);
+
+  const char* curve_header() const override;
+  void observe(ElementRun& run, Progress& progress) override;
+  bool finished(const ElementRun&) const override { return p_.step == p_.total_steps; }
+  void after_step(ElementRun& run) override;
+  long step() const override { return p_.step; }
+  std::string position() const override;
+  void save(ElementRun& run) const override;
+  const ShearProgress& progress() const { return p_; }
+
+ private:
+  void record(ElementRun& run);
+  void snapshot(ElementRun& run);
+  void add_specimen_stresses(const Simulation& sim);
+
+  ShearProgress p_;
+  double axial_strain_ = 0.0;  // at the last observe
+  std::string dir_;
+  BoxController control_;
+  ScopedListener attached_;
 };
-
-inline constexpr const char* curve_header =
-    "time_s,axial_strain,lateral_strain_x,lateral_strain_y,volumetric_strain,"
-    "axial_stress_walls_Pa,lateral_stress_x_walls_Pa,lateral_stress_y_walls_Pa,"
-    "axial_stress_particles_Pa,lateral_stress_x_particles_Pa,lateral_stress_y_particles_Pa,"
-    "axial_stress_boundary_Pa,lateral_stress_x_boundary_Pa,lateral_stress_y_boundary_Pa,"
-    "deviator_stress_Pa,mean_stress_Pa,stress_ratio,solid_fraction,coordination_number,"
-    "inertial_number,unbalanced_force_ratio";
-
-// Runs the shearing to its end. Writes DIR/checkpoint.bin every `checkpoint_interval_s` of wall
-// time and, on Ctrl-C / SIGTERM, a last one before throwing Interrupted.
-void shear(ShearRun& run, const std::string& dir, double checkpoint_interval_s, Progress& progress);
-
-void save_checkpoint(const ShearRun& run, const std::string& path);
-// Throws ConfigError for a missing or damaged checkpoint.
-ShearRun load_checkpoint(const std::string& path, PairTable table);
-// The config stored in a checkpoint (to rebuild the pair table before load_checkpoint).
-void peek_checkpoint_config(const std::string& path, std::string& config_path,
-                            std::string& config_text);
 
 }  // namespace grainlab

@@ -1,0 +1,353 @@
+#include "lab/element_test.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "contact/stability.hpp"
+#include "contact/time_step.hpp"
+#include "grainlab/version.hpp"
+#include "io/config_error.hpp"
+#include "io/output_files.hpp"
+#include "io/scene_builder.hpp"
+#include "lab/interrupt.hpp"
+#include "lab/lab_config.hpp"
+#include "measure/boundary.hpp"
+#include "measure/specimen_state.hpp"
+
+namespace grainlab {
+
+ElementTestConfig read_element_test_keys(const std::string& path, const toml::table& root,
+                                         TableReader& t, const ElementTestSettings& defaults) {
+  ElementTestConfig c;
+  c.settings = defaults;
+  c.scene = read_lab_materials(path, root);
+  ElementTestSettings& s = c.settings;
+  SpecimenSettings& p = s.specimen;
+  c.table = build_pair_table(c.scene);
+  auto material = [&](const char* key, const char* fallback) {
+    return lab_material(t, c.table, key, t.string_or(key, fallback));
+  };
+  p.bead_material = material("bead_material", "glass");
+  p.lateral_material = material("lateral_material", "rubber_membrane");
+  p.platen_material = material("platen_material", "porous_stone");
+  const Material& bead = c.scene.materials[p.bead_material];
+  if (!bead.density) t.fail("bead_material", "the bead material needs a density");
+  p.density = *bead.density;
+  for (int other : {p.bead_material, p.lateral_material, p.platen_material})
+    require_pair(t, c.table, "bead_material", p.bead_material, other);
+  p.count = t.integer_or("count", p.count);
+  if (p.count < 8) t.fail("count", "expected at least 8 particles");
+  if (p.count > 20'000'000)
+    t.fail("count", "more particles than grainlab places in one specimen (20 million)");
+  p.diameter = t.number_or("diameter", Quantity::length, p.diameter);
+  p.diameter_tolerance = t.number_or("diameter_tolerance", Quantity::length, p.diameter_tolerance);
+  if (!(p.diameter > 0)) t.fail("diameter", "expected a diameter > 0 m");
+  if (!(p.diameter_tolerance >= 0 && p.diameter_tolerance < 0.5 * p.diameter))
+    t.fail("diameter_tolerance", "expected 0 <= tolerance < half the diameter");
+  if (t.has("box")) {
+    const auto box = t.numbers("box", Quantity::length, 3);
+    p.nominal_box = {box[0], box[1], box[2]};
+  }
+  for (int a = 0; a < 3; ++a)
+    if (!(p.nominal_box[a] >= 2.0 * (p.diameter + p.diameter_tolerance)))
+      t.fail("box", "every side of the box must hold at least two particle diameters");
+  // The beads must fit in the nominal box below random close packing (solid fraction 0.64).
+  const double bead_volume = p.count * (M_PI / 6.0) * p.diameter * p.diameter * p.diameter;
+  const double needed = bead_volume / (p.nominal_box.x * p.nominal_box.y * p.nominal_box.z);
+  if (needed > 0.64)
+    t.fail("count",
+           fmt::format(
+               "more particles than fit in the box: they would fill {:.2f} of it, above random "
+               "close packing (0.64)",
+               needed));
+  p.confining_stress = t.number_or("confining_stress", Quantity::pressure, p.confining_stress);
+  if (!(p.confining_stress > 0)) t.fail("confining_stress", "expected a confining stress > 0 Pa");
+  if (auto phi = t.optional_number("target_solid_fraction", Quantity::dimensionless)) {
+    if (!(*phi > 0.45 && *phi < 0.66))
+      t.fail("target_solid_fraction", "expected a solid fraction in (0.45, 0.66)");
+    p.target_solid_fraction = *phi;
+  }
+  p.dt_fraction = t.number_or("dt_fraction", Quantity::dimensionless, p.dt_fraction);
+  if (!(p.dt_fraction > 0 && p.dt_fraction <= 0.3))
+    t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
+  p.max_strain_rate =
+      t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
+  p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
+  p.compaction_restitution =
+      t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
+  if (!(p.compaction_restitution > 0 && p.compaction_restitution <= 1))
+    t.fail("compaction_restitution", "expected a restitution coefficient in (0, 1]");
+  p.seed = static_cast<uint64_t>(t.integer_or("seed", 1));
+  if (t.has("specimen")) s.specimen_file = t.string("specimen");
+  const std::string loading = t.string_or("loading", "inertial");
+  if (loading == "paper") {
+    s.platen_speed = 0.01;
+  } else if (loading == "speed") {
+    s.platen_speed = t.number("platen_speed", Quantity::velocity);
+    if (!(*s.platen_speed > 0)) t.fail("platen_speed", "expected a platen speed > 0 m/s");
+  } else if (loading != "inertial") {
+    t.fail("loading",
+           "expected \"inertial\" (fastest rate with I below max_inertial_number), \"paper\" (0.01 "
+           "m/s) or \"speed\"");
+  }
+  s.max_inertial_number =
+      t.number_or("max_inertial_number", Quantity::dimensionless, s.max_inertial_number);
+  if (!(s.max_inertial_number > 0)) t.fail("max_inertial_number", "expected a bound > 0");
+  s.output_strain_interval =
+      t.number_or("output_strain_interval", Quantity::dimensionless, s.output_strain_interval);
+  if (!(s.output_strain_interval > 0))
+    t.fail("output_strain_interval", "expected a strain interval > 0");
+  s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
+  if (!(s.checkpoint_interval > 0))
+    t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
+  s.vtk = t.boolean_or("vtk", false);
+  s.vtk_strain_interval =
+      t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
+  if (!(s.vtk_strain_interval > 0))
+    t.fail("vtk_strain_interval", "expected an axial-strain interval > 0");
+  return c;
+}
+
+nlohmann::json specimen_json(const Specimen& s) {
+  return {{"particles", s.particles.size()},
+          {"inserted_box_m", {s.inserted_box.x, s.inserted_box.y, s.inserted_box.z}},
+          {"inserted_solid_fraction", s.inserted_solid_fraction},
+          {"final_box_m", {s.high.x - s.low.x, s.high.y - s.low.y, s.high.z - s.low.z}},
+          {"solid_fraction", s.solid_fraction},
+          {"coordination_number", s.coordination_number},
+          {"unbalanced_force_ratio", s.unbalanced_force_ratio},
+          {"max_wall_stress_error", s.max_stress_error},
+          {"compaction_friction", s.compaction_friction},
+          {"compaction_restitution", s.compaction_restitution},
+          {"equilibrium_reached", s.equilibrium_reached},
+          {"target_solid_fraction_reached", s.target_reached},
+          {"simulated_time_s", s.simulated_time}};
+}
+
+Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress) {
+  if (c.settings.specimen_file) {
+    std::string file = *c.settings.specimen_file;
+    if (std::filesystem::is_directory(file)) file += "/specimen.csv";
+    return load_specimen(file, c.settings.specimen.density);
+  }
+  return prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
+}
+
+ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& table,
+                                  const ParticleStore& particles) {
+  const PairParams& beads = table(sp.bead_material, sp.bead_material);
+  double r_min = 1e300;
+  for (double r : particles.radius) r_min = std::min(r_min, r);
+  ElementTimeStep out;
+  out.collision_duration =
+      collision_duration(r_min, sp.density, beads.youngs_modulus, beads.restitution);
+  const TimeStepChoiceForMaterial step =
+      stable_time_step(sp.dt_fraction * out.collision_duration, table, sp.bead_material, r_min);
+  out.limited_by = step.limited_by;
+  out.settings.time_step = step.time_step;
+  out.settings.dt_fraction = step.time_step / out.collision_duration;
+  out.settings.skin = verlet_skin(sp.diameter);
+  return out;
+}
+
+void check_specimen_file(const std::string& path, const ElementTestSettings& s) {
+  if (s.specimen_file && !std::filesystem::exists(*s.specimen_file))
+    throw ConfigError(
+        fmt::format("{}: test.specimen: {} does not exist (make one with grainlab prepare)", path,
+                    *s.specimen_file));
+}
+
+LoadingRate loading_rate(const ElementTestSettings& s, double height0) {
+  const SpecimenSettings& sp = s.specimen;
+  const double rate_bound =
+      s.max_inertial_number / (sp.diameter * std::sqrt(sp.density / sp.confining_stress));
+  LoadingRate r;
+  r.platen_speed = s.platen_speed ? *s.platen_speed : 0.5 * rate_bound * height0;
+  r.strain_rate = 2.0 * r.platen_speed / height0;
+  return r;
+}
+
+nlohmann::json loading_json(const LoadingRate& rate, const ElementTestSettings& s) {
+  return {{"platen_speed_m_per_s", rate.platen_speed},
+          {"strain_rate_per_s", rate.strain_rate},
+          {"rule", s.platen_speed ? "platen speed given (paper: 0.01 m/s)"
+                                  : "fastest rate with I <= max_inertial_number"},
+          {"max_inertial_number_bound", s.max_inertial_number}};
+}
+
+nlohmann::json inputs_json(const toml::table& root) {
+  std::ostringstream inputs;
+  inputs << toml::json_formatter{root};
+  return nlohmann::json::parse(inputs.str());
+}
+
+namespace {
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+ElementRun start_element_test(const std::string& type, const std::string& path,
+                              const toml::table& root, const ElementTestConfig& c,
+                              const std::string& out_dir, Progress& progress) {
+  const ElementTestSettings& s = c.settings;
+  const SpecimenSettings& sp = s.specimen;
+  const auto wall_start = std::chrono::steady_clock::now();
+  const Specimen specimen = obtain_specimen(c, progress);
+  if (!s.specimen_file) save_specimen(out_dir + "/specimen.csv", specimen);
+  const ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);
+  ElementRun run{
+      Simulation(specimen.particles,
+                 cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material),
+                 c.table, step.settings),
+      type, path, read_text(path)};
+  // A specimen is stored without contact history (tangential springs), so it is first brought
+  // back to equilibrium under the confining stress before the loading starts.
+  const HoldState held = hold_isotropic(
+      run.sim,
+      HoldCriteria{sp.confining_stress, sp.max_strain_rate, sp.stress_tolerance, 1e-3, 0.02},
+      [&](const HoldState& state) {
+        if (interrupt_requested())
+          throw Interrupted("interrupted before the loading began: nothing to resume");
+        progress.update(
+            0.0, fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
+                             100 * state.max_stress_error, state.unbalanced));
+        return true;
+      });
+  nlohmann::json j;
+  j["grainlab_version"] = version_string;
+  j["config_file"] = path;
+  j["inputs"] = inputs_json(root);
+  j["specimen"] = specimen_json(specimen);
+  j["specimen"]["source"] =
+      s.specimen_file ? *s.specimen_file : std::string("prepared in this run");
+  const double dt = step.settings.time_step;
+  j["time_step_s"] = dt;
+  j["dt_fraction"] = dt / step.collision_duration;
+  j["collision_duration_s"] = step.collision_duration;
+  j["time_step_limited_by"] = step.limited_by;
+  j["initial_solid_fraction"] = solid_fraction(run.sim.particles(), box_volume(run.sim.walls()));
+  j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced},
+                           {"max_wall_stress_error", held.max_stress_error},
+                           {"reached", held.reached}};
+  j["preparation_wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  run.run_info = j.dump();
+  return run;
+}
+
+void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
+                 double checkpoint_interval_s, Progress& progress) {
+  const auto session_start = std::chrono::steady_clock::now();
+  auto last_checkpoint = session_start;
+  auto write_curve = [&] {
+    write_file_atomically(dir + "/curve.csv.partial",
+                          std::string(stage.curve_header()) + "\n" + run.curve_rows);
+  };
+  auto session_time = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+  };
+  auto checkpoint = [&] {
+    stage.save(run);
+    const double before = run.wall_time_before;
+    run.wall_time_before += session_time();
+    write_curve();
+    save_checkpoint(run, dir + "/checkpoint.bin");
+    run.wall_time_before = before;
+    last_checkpoint = std::chrono::steady_clock::now();
+  };
+  for (;;) {
+    stage.observe(run, progress);
+    if (stage.finished(run)) break;
+    if (interrupt_requested()) {
+      checkpoint();
+      throw Interrupted(
+          fmt::format("interrupted at {}; checkpoint written, continue with: "
+                      "grainlab run --resume {}",
+                      stage.position(), dir));
+    }
+    if (stage.step() % 1000 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >
+            checkpoint_interval_s)
+      checkpoint();
+    run.sim.step();
+    stage.after_step(run);
+  }
+  run.wall_time_before += session_time();
+  stage.save(run);
+  write_curve();
+  std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
+  std::error_code ec;
+  std::filesystem::remove(dir + "/checkpoint.bin", ec);
+}
+
+namespace {
+
+constexpr uint64_t checkpoint_magic = 0x67726e6c656c7431;  // "grnlelt1"
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+void save_checkpoint(const ElementRun& run, const std::string& path) {
+  StateWriter out;
+  out.value(checkpoint_magic);
+  out.text(run.type);
+  out.text(run.config_path);
+  out.text(run.config_text);
+  out.text(run.run_info);
+  out.text(run.curve_rows);
+  out.text(run.vtk_index);
+  out.text(run.test_state);
+  out.value(run.wall_time_before);
+  run.sim.save_state(out);
+  write_file_atomically(path, out.bytes());
+}
+
+void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
+                     std::string& config_text) {
+  StateReader in(read_all(path));
+  try {
+    if (in.value<uint64_t>() != checkpoint_magic)
+      throw std::runtime_error("not a grainlab element-test checkpoint");
+    type = in.text();
+    config_path = in.text();
+    config_text = in.text();
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: {}", path, e.what()));
+  }
+}
+
+ElementRun load_checkpoint(const std::string& path, PairTable table) {
+  StateReader in(read_all(path));
+  try {
+    if (in.value<uint64_t>() != checkpoint_magic)
+      throw std::runtime_error("not a grainlab element-test checkpoint");
+    std::string type = in.text(), config_path = in.text(), config_text = in.text();
+    std::string info = in.text(), rows = in.text(), vtk = in.text(), state = in.text();
+    const double wall_time_before = in.value<double>();
+    Simulation sim(in, std::move(table));
+    if (!in.at_end()) throw std::runtime_error("trailing data");
+    return ElementRun{std::move(sim),         std::move(type),  std::move(config_path),
+                      std::move(config_text), std::move(info),  std::move(rows),
+                      std::move(vtk),         std::move(state), wall_time_before};
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
+  }
+}
+
+}  // namespace grainlab

@@ -1,0 +1,127 @@
+// The machinery every element test on a cuboid specimen shares (triaxial, oedometer; the plane
+// strain test next), so that a test is one file of what is its own: which axis is held how
+// (control/box_controller.hpp), when it records and what, and its summary.
+//
+//   ElementTestSettings     the [test] keys every element test reads (specimen, loading rate,
+//                           outputs, checkpoints)  -> read_element_test_keys
+//   start_element_test      specimen prepared (or loaded), the Simulation built with the one
+//                           time-step rule, re-equilibrated at the confining stress
+//   LoadingStage            a test's loading, driven step by step by run_loading, which also
+//                           writes the curve, the periodic and the Ctrl-C checkpoints, progress
+//   ElementRun              everything a checkpoint holds; `grainlab run --resume DIR` finds
+//                           the test by its type in the registry (lab/registry.cpp)
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "contact/pair_table.hpp"
+#include "core/simulation.hpp"
+#include "io/progress.hpp"
+#include "io/scene_config.hpp"
+#include "io/toml_reader.hpp"
+#include "lab/specimen.hpp"
+
+namespace grainlab {
+
+struct ElementTestSettings {
+  SpecimenSettings specimen;
+  std::optional<std::string> specimen_file;  // a prepared specimen to reuse
+  std::optional<double> platen_speed;        // m/s each platen; empty: from the inertial number
+  double max_inertial_number = 1e-3;
+  double output_strain_interval = 0.001;
+  bool vtk = false;
+  double vtk_strain_interval = 0.01;
+  double checkpoint_interval = 300.0;  // s of wall time between checkpoints
+};
+
+// A test config read: materials and pairs, the pair table and the shared settings.
+struct ElementTestConfig {
+  SceneConfig scene;
+  PairTable table{{}};
+  ElementTestSettings settings;
+};
+
+// Reads the shared keys of [test] (materials, specimen, loading, outputs) with the test's own
+// defaults; the caller reads its own keys from `t` and calls t.finish().
+ElementTestConfig read_element_test_keys(const std::string& path, const toml::table& root,
+                                         TableReader& t, const ElementTestSettings& defaults = {});
+
+// The loaded specimen file or a freshly prepared specimen.
+Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress);
+nlohmann::json specimen_json(const Specimen& s);
+
+// The time step of a test on this specimen: dt_fraction * t_c of the smallest bead, lowered
+// where a spring-dashpot in use needs it (contact/stability.hpp).
+struct ElementTimeStep {
+  SimulationSettings settings;
+  double collision_duration = 0.0;  // s, of the smallest bead pair
+  std::string limited_by;
+};
+ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& table,
+                                  const ParticleStore& particles);
+
+// ConfigError unless test.specimen (when given) exists.
+void check_specimen_file(const std::string& config_path, const ElementTestSettings& s);
+
+// The platens' speed: given, or the fastest whose inertial number at the confining stress is the
+// bound (the mean stress only grows while loading, so I stays below it).
+struct LoadingRate {
+  double platen_speed = 0.0;  // m/s, each platen
+  double strain_rate = 0.0;   // 1/s, 2 v / H0
+};
+LoadingRate loading_rate(const ElementTestSettings& s, double height0);
+nlohmann::json loading_json(const LoadingRate& rate, const ElementTestSettings& s);
+
+// Everything a checkpoint holds.
+struct ElementRun {
+  Simulation sim;
+  std::string type;                      // test.type
+  std::string config_path, config_text;  // to rebuild the pair table on resume
+  std::string run_info;           // JSON text of what the summary needs from before the loading
+  std::string curve_rows;         // curve.csv rows so far (without header)
+  std::string vtk_index;          // <DataSet> lines of particles.pvd so far
+  std::string test_state;         // the test's own progress values (LoadingStage::save)
+  double wall_time_before = 0.0;  // s spent in earlier sessions of this run
+};
+
+// Specimen obtained, simulation built, re-equilibrated under the confining stress (a specimen
+// file carries no contact history); run_info holds the specimen, time step and preparation.
+ElementRun start_element_test(const std::string& type, const std::string& config_path,
+                              const toml::table& root, const ElementTestConfig& c,
+                              const std::string& out_dir, Progress& progress);
+
+// One test's loading. run_loading calls, per step: observe (record outputs when due), then,
+// unless finished, Simulation::step (the test's controller is attached to the simulation) and
+// after_step (accumulate).
+class LoadingStage {
+ public:
+  virtual ~LoadingStage() = default;
+  virtual const char* curve_header() const = 0;
+  virtual void observe(ElementRun& run, Progress& progress) = 0;
+  virtual bool finished(const ElementRun& run) const = 0;
+  virtual void after_step(ElementRun& run) = 0;
+  virtual long step() const = 0;                 // steps of this stage so far
+  virtual std::string position() const = 0;      // where an interrupted run stopped, for the user
+  virtual void save(ElementRun& run) const = 0;  // its state into run.test_state
+};
+
+// Runs the stage to its end in DIR: DIR/checkpoint.bin every `checkpoint_interval_s` of wall
+// time and on Ctrl-C / SIGTERM (then throws Interrupted); curve.csv at the end.
+void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
+                 double checkpoint_interval_s, Progress& progress);
+
+void save_checkpoint(const ElementRun& run, const std::string& path);
+// The test type and config stored in a checkpoint (to rebuild the pair table before loading it).
+void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
+                     std::string& config_text);
+// Throws ConfigError for a missing or damaged checkpoint.
+ElementRun load_checkpoint(const std::string& path, PairTable table);
+
+// The JSON of the config's inputs.
+nlohmann::json inputs_json(const toml::table& root);
+
+}  // namespace grainlab
