@@ -87,9 +87,10 @@ Packing make_loose_packing(long count, const Vec3& box_size, uint64_t seed) {
 }
 
 // The dense packings are made by the laboratory's own preparation (lab/specimen.hpp): beads on a
-// jittered lattice, compressed isotropically by six servo-held walls to 150 kPa with the
-// benchmark's contact law (glass-glass and glass-wall pairs alike), so the benchmark runs on the
-// same kind of specimen the triaxial test shears.
+// jittered lattice, compressed isotropically by six servo-held walls to 150 kPa, frictionless
+// until the solid fraction reaches 0.60 and with the benchmark's contact law after (glass-glass
+// and glass-wall pairs alike), so the benchmark runs on the same kind of specimen the triaxial
+// test shears.
 Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, bool verbose) {
   SpecimenSettings s;
   s.count = count;
@@ -97,6 +98,7 @@ Packing make_dense_packing(long count, const Vec3& target_size, uint64_t seed, b
   s.diameter_tolerance = 0.01 * bead_diameter;
   s.nominal_box = target_size;
   s.confining_stress = 150e3;
+  s.target_solid_fraction = 0.60;  // frictionless compaction to it (fast), then friction on
   s.bead_material = 0;
   s.lateral_material = s.platen_material = 1;
   s.density = glass_density;

@@ -144,28 +144,32 @@ void Simulation::gather() {
   }
 }
 
+const char* Simulation::step_key() const {
+  return settings_.step_key == SimulationSettings::StepKey::scene ? "simulation.dt_fraction (or dt)"
+                                                                  : "test.dt_fraction";
+}
+
 void Simulation::check_health() const {
   const double max_speed = settings_.max_speed;
   if (!(max_speed2_ <= max_speed * max_speed)) {
     const bool nan = std::isinf(max_speed2_) || std::isnan(max_speed2_);
     throw BlowUpError(fmt::format(
         "the run blew up at t = {:.6g} s (step {}): {}. The time step ({:.3g} s) is too large for "
-        "the contact stiffness; lower simulation.dt_fraction (or dt), or check the initial "
-        "velocities and wall speeds.",
+        "the contact stiffness; lower {}, or check the initial velocities and wall speeds.",
         time_, step_count_,
         nan ? std::string("a particle velocity became NaN")
             : fmt::format("a particle reached {:.3g} m/s, above simulation.max_speed = {:.3g} m/s",
                           std::sqrt(max_speed2_), max_speed),
-        settings_.time_step));
+        settings_.time_step, step_key()));
   }
   if (max_overlap_fraction_ > settings_.max_overlap_fraction) {
     throw BlowUpError(fmt::format(
         "the run blew up at t = {:.6g} s (step {}): two bodies overlap by {:.2f} % of a radius "
         "(limit {:.2f} %). The contacts are too soft for the load or the time step ({:.3g} s) is "
         "too "
-        "large; lower simulation.dt_fraction (or dt), slow the walls, or raise the stiffness.",
+        "large; lower {}, slow the walls, or raise the stiffness.",
         time_, step_count_, 100.0 * max_overlap_fraction_, 100.0 * settings_.max_overlap_fraction,
-        settings_.time_step));
+        settings_.time_step, step_key()));
   }
 }
 

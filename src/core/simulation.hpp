@@ -26,6 +26,8 @@ struct SimulationSettings {
   double skin = 0.0;                   // Verlet skin, m
   double max_speed = 100.0;            // m/s; a faster particle means the run has blown up
   double max_overlap_fraction = 0.05;  // of the smaller radius
+  // The config key that sets the time step, named in the advice of a BlowUpError.
+  enum class StepKey { scene, lab_test } step_key = StepKey::scene;
 };
 
 // Thrown when the integration has become unphysical; the message says what and how to fix it.
@@ -100,6 +102,7 @@ class Simulation {
   void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
+  const char* step_key() const;  // the config key of the time step, for advice
 
   ParticleStore particles_;
   std::vector<Wall> walls_;

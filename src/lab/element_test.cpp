@@ -152,6 +152,7 @@ ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& t
   out.settings.time_step = step.time_step;
   out.settings.dt_fraction = step.time_step / out.collision_duration;
   out.settings.skin = verlet_skin(sp.diameter);
+  out.settings.step_key = SimulationSettings::StepKey::lab_test;
   return out;
 }
 

@@ -147,6 +147,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
        stable_time_step(s.dt_fraction * t_c, measured_friction, s.bead_material, r_min).time_step});
   settings.dt_fraction = settings.time_step / t_c;  // below s.dt_fraction if stability lowered it
   settings.skin = verlet_skin(s.diameter);
+  settings.step_key = SimulationSettings::StepKey::lab_test;
   Simulation sim(std::move(particles),
                  cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);

@@ -305,5 +305,67 @@ def resume_without_checkpoint():
         assert r.returncode == 2 and "checkpoint" in r.stderr, r.stderr
 
 
+OEDOMETER = os.path.join(SRC, "examples/oedometer/small.toml")
+
+
+def read_rows(path):
+    lines = open(path).read().split("\n")
+    header = lines[0].split(",")
+    return [dict(zip(header, map(float, l.split(",")))) for l in lines[1:] if l]
+
+
+def oedometer_small_example():
+    """The oedometer example: lateral strain exactly zero in every row (fixed walls); K0 from the
+    wall forces agrees with the particles' own (Love-Weber) stress within 2 % on every loading row
+    past a tenth of the load (the walls are frictionless, so the two are the same stress if the
+    packing is in equilibrium); the constrained modulus is positive and larger on unloading than
+    on loading (the packing's elastic response: loading also slides and rearranges contacts)."""
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "o")
+        r = run("run", OEDOMETER, "--out", out, "--quiet")
+        assert r.returncode == 0, r.stderr
+        s = json.load(open(os.path.join(out, "summary.json")))
+        rows = read_rows(os.path.join(out, "curve.csv"))
+        print("K0", s["K0_walls_at_max_stress"], s["K0_particles_at_max_stress"], "M",
+              s["constrained_modulus_loading_Pa"], s["constrained_modulus_unloading_Pa"], "rows", len(rows))
+        assert all(r["lateral_strain_x"] == 0.0 and r["lateral_strain_y"] == 0.0 for r in rows)
+        assert s["max_axial_stress_Pa"] >= 600e3
+        s0, smax = rows[0]["axial_stress_walls_Pa"], s["max_axial_stress_Pa"]
+        checked = [r for r in rows if r["phase"] == 1 and r["axial_stress_walls_Pa"] > s0 + 0.1 * (smax - s0)]
+        assert len(checked) >= 10, len(checked)
+        worst = max(abs(r["K0_walls"] / r["K0_particles"] - 1) for r in checked)
+        print("worst K0 walls vs particles on loading:", worst)
+        assert worst < 0.02, worst
+        assert 0.3 < s["K0_walls_at_max_stress"] < 1.0
+        assert 0 < s["constrained_modulus_loading_Pa"] < s["constrained_modulus_unloading_Pa"]
+        assert rows[-1]["phase"] == -1 and rows[-1]["axial_stress_walls_Pa"] <= 150e3  # unloaded
+
+
+def oedometer_checkpoint_survives_kill():
+    """The generic element-test checkpoint: an oedometer run killed after a periodic checkpoint
+    resumes (by its test type) to the same curve and summary as an uninterrupted run."""
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        spec = os.path.join(d, "spec")
+        assert run("prepare", OEDOMETER, "--out", spec, "--quiet").returncode == 0
+        path = os.path.join(d, "oed.toml")
+        open(path, "w").write(open(OEDOMETER).read().replace(
+            "count = 500", f'count = 500\nspecimen = "{spec}"\ncheckpoint_interval = "0.5 s"'))
+        a, b = os.path.join(d, "a"), os.path.join(d, "b")
+        assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
+        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
+        for _ in range(2000):
+            if os.path.exists(os.path.join(b, "checkpoint.bin")):
+                break
+            time.sleep(0.01)
+        time.sleep(0.3)
+        p.kill()
+        p.wait()
+        assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
+        r = run("run", "--resume", b, "--quiet", "--threads", "2")
+        assert r.returncode == 0, r.stderr
+        compare_runs(a, b)
+
+
 globals()[CHECK]()
 print("ok:", CHECK)
