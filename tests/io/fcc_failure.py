@@ -29,7 +29,7 @@ The set-up, and why each detail is there:
   at an axial strain rate of 2e-2 /s: inertial number I = rate d sqrt(rho / p) = 6e-6. The strain
   to failure is of the order of the contact overlap over d (5e-6 to 6e-6 here), so the run is
   short (1e-5 axial strain, 1.4e4 steps). The peak does not depend on the rate: it moved by 0.05 %
-  between 2.5e-3 /s and 1.5e-2 /s (n = 8) and by 0.03 % between 1e-2 /s and 2e-2 /s (n = 16). A
+  between 1.5e-3 /s and 1.5e-2 /s (n = 8) and by 0.03 % between 1e-2 /s and 2e-2 /s (n = 16). A
   moderate restitution (0.5) damps the waves the start sends.
 - The time step is the default 0.1 t_c. The peak is the same within 0.02 % at 0.05, 0.08 and
   0.11 t_c; at 0.127 t_c (the stable step grainlab derives for a sphere held by four contacts,
