@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/config_error.hpp"
+#include "io/wall_control.hpp"
 
 namespace grainlab {
 namespace fs = std::filesystem;
@@ -34,7 +35,7 @@ void prepare_output_dir(const std::string& dir, bool overwrite) {
             name == "particles.pvd" || name == "curve.csv" || name == "curve.png" ||
             name == "specimen.csv" || name == "specimen.json" || name == "trajectory.csv" ||
             name == "force_time.csv" || name.ends_with(".partial") || name == "vtk" ||
-            name == "checkpoint.bin" || ext == ".tmp")
+            name == "checkpoint.bin" || name == "walls.csv" || ext == ".tmp")
           fs::remove_all(entry.path(), ec);
       }
     }
@@ -84,6 +85,30 @@ std::string trace_row(double t, const ParticleStore& p, size_t i) {
   return fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", exact(t), p.id[i], exact(x.x),
                      exact(x.y), exact(x.z), exact(v.x), exact(v.y), exact(v.z), exact(w.x),
                      exact(w.y), exact(w.z));
+}
+
+std::string walls_header(const std::vector<Wall>& walls) {
+  std::string out = "time_s";
+  for (const Wall& w : walls)
+    out += fmt::format(
+        ",{0}_force_x_N,{0}_force_y_N,{0}_force_z_N,{0}_normal_stress_Pa,{0}_contacts,{0}_x_m,"
+        "{0}_y_m,{0}_z_m",
+        w.name);
+  return out;
+}
+
+std::string walls_row(double t, const std::vector<Wall>& walls,
+                      const std::vector<std::optional<double>>& areas_m2) {
+  std::string out = exact(t);
+  for (size_t k = 0; k < walls.size(); ++k) {
+    const Wall& w = walls[k];
+    const std::string stress =
+        areas_m2[k] ? exact(compressive_normal_stress(w, *areas_m2[k])) : std::string();
+    out += fmt::format(",{},{},{},{},{},{},{},{}", exact(w.force.x), exact(w.force.y),
+                       exact(w.force.z), stress, w.contact_count, exact(w.point.x),
+                       exact(w.point.y), exact(w.point.z));
+  }
+  return out + "\n";
 }
 
 std::vector<size_t> indices_by_id(const ParticleStore& p) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,14 @@ std::string exact(double v);
 // One CSV row per particle: t,id,x,y,z,vx,vy,vz,wx,wy,wz (SI units).
 inline constexpr const char* trace_header = "t,id,x,y,z,vx,vy,vz,wx,wy,wz";
 std::string trace_row(double time, const ParticleStore& p, size_t index);
+
+// walls.csv: `time_s`, then per wall (in config order, named by the wall's name)
+// NAME_force_x_N, NAME_force_y_N, NAME_force_z_N (exerted by the particles on the wall),
+// NAME_normal_stress_Pa (compressive, over `areas_m2[k]`; empty where the wall has no area),
+// NAME_contacts, NAME_x_m, NAME_y_m, NAME_z_m (the wall's point).
+std::string walls_header(const std::vector<Wall>& walls);
+std::string walls_row(double time, const std::vector<Wall>& walls,
+                      const std::vector<std::optional<double>>& areas_m2);
 
 // Every particle, sorted by id: id,material,radius,x,y,z,vx,vy,vz,wx,wy,wz.
 std::string final_table(const ParticleStore& p);

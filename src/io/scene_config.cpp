@@ -228,6 +228,77 @@ void read_particles(const toml::table& root, SceneConfig& c) {
         fmt::format("{}: no particles: add [[particle]] or [[particles]] entries", c.file));
 }
 
+namespace {
+
+// The wall's name heads columns of walls.csv: unique, and nothing that breaks a CSV header.
+void check_wall_name(const TableReader& r, const std::string& name,
+                     const std::vector<Wall>& walls) {
+  if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos)
+    r.fail("name",
+           "expected a name without commas, quotes or line breaks (it heads the columns of "
+           "walls.csv)");
+  for (size_t k = 0; k < walls.size(); ++k)
+    if (walls[k].name == name)
+      r.fail("name", fmt::format("wall name \"{}\" is also that of wall[{}] (an unnamed wall[k] "
+                                 "is called \"wallk\"); names head the columns of walls.csv",
+                                 name, k + 1));
+}
+
+// How the wall moves beyond a prescribed velocity: target_stress (a servo), or mass and force (a
+// free body); and the area its normal stress is measured on. The geometry is read.
+WallLoad read_wall_load(TableReader& r, Wall& w) {
+  WallLoad load;
+  if (r.has("area")) {
+    if (w.shape != WallShape::plane)
+      r.fail("area", w.shape == WallShape::rectangle
+                         ? "a rectangle's area is its size; `area` is for plane walls"
+                         : "a cylinder has no face area for a normal stress; `area` is for plane "
+                           "walls");
+    load.area = r.number("area", Quantity::area);
+    if (!(*load.area > 0.0)) r.fail("area", "expected an area > 0 m^2");
+  } else if (w.shape == WallShape::rectangle) {
+    load.area = 4.0 * w.half_u * w.half_v;
+  }
+  load.target_stress = r.optional_number("target_stress", Quantity::pressure);
+  if (load.target_stress) {
+    if (w.shape == WallShape::cylinder)
+      r.fail("target_stress",
+             "a servo moves a wall along its normal, which a cylinder does not have: use a "
+             "plane or rectangle wall");
+    if (!(*load.target_stress > 0.0))
+      r.fail("target_stress", "expected a compressive normal stress > 0 Pa");
+    for (const char* key : {"mass", "force", "velocity"})
+      if (r.has(key))
+        r.fail("target_stress",
+               fmt::format("the servo sets the wall's velocity, so target_stress excludes `{}`: "
+                           "give one of the two",
+                           key));
+    if (!load.area)
+      r.fail("area",
+             "missing: a plane wall with target_stress needs the area (m^2) of the face it loads, "
+             "to turn its force into a stress");
+    load.max_speed = r.number_or("max_speed", Quantity::velocity, default_wall_servo_max_speed);
+    if (!(load.max_speed > 0.0)) r.fail("max_speed", "expected a speed > 0 m/s");
+  } else if (r.has("max_speed")) {
+    r.fail("max_speed", "caps the speed of a servo-held wall: give it with target_stress");
+  }
+  if (r.has("mass")) {
+    w.mass = r.number("mass", Quantity::mass);
+    if (!(w.mass > 0.0))
+      r.fail("mass",
+             "expected a wall mass > 0 kg (leave mass out for a wall whose velocity is "
+             "prescribed)");
+  }
+  if (r.has("force")) {
+    if (!(w.mass > 0.0))
+      r.fail("force", "a constant force acts only on a wall with mass: add mass (kg)");
+    w.external_force = r.vec3("force", Quantity::force);
+  }
+  return load;
+}
+
+}  // namespace
+
 void read_walls(const toml::table& root, SceneConfig& c) {
   const toml::array* a = array_of_tables(root, "wall", c.file);
   if (!a) return;
@@ -235,6 +306,7 @@ void read_walls(const toml::table& root, SceneConfig& c) {
     TableReader r(*a->get(k)->as_table(), c.file, fmt::format("wall[{}]", k + 1));
     Wall w;
     w.name = r.string_or("name", fmt::format("wall{}", k + 1));
+    check_wall_name(r, w.name, c.walls);
     const std::string type = r.string("type");
     w.material = material_index(r, "material", r.string("material"), c.materials);
     w.point = r.vec3("point", Quantity::length);
@@ -262,9 +334,11 @@ void read_walls(const toml::table& root, SceneConfig& c) {
     } catch (const std::invalid_argument& e) {
       r.fail(type == "cylinder" ? "radius" : "normal", e.what());
     }
+    const WallLoad load = read_wall_load(r, w);
     r.finish();
     c.walls.push_back(w);
     c.wall_lines.push_back(r.line_of(""));
+    c.wall_loads.push_back(load);
   }
   if (c.walls.size() > 60000) throw ConfigError(fmt::format("{}: too many walls", c.file));
 }

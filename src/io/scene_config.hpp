@@ -45,6 +45,18 @@ struct ParticleBatch {
   int line = 0;
 };
 
+// Speed cap of a servo-held wall (`[[wall]] max_speed`) when none is given, m/s: the speed at which
+// a wall that touches nothing approaches the particles, and the largest speed it follows them at.
+inline constexpr double default_wall_servo_max_speed = 0.01;
+
+// What a [[wall]] adds to its geometry and motion (geometry/wall.hpp): the area its normal stress
+// is measured on, and a target normal stress held by a servo (io/wall_control.hpp).
+struct WallLoad {
+  std::optional<double> area;  // m^2: rectangle, its own; plane, the `area` key; cylinder, none
+  std::optional<double> target_stress;              // Pa, compressive positive
+  double max_speed = default_wall_servo_max_speed;  // m/s, servo speed cap
+};
+
 struct OutputSettings {
   double interval = 0.0;  // s
   bool trace_all = true;
@@ -65,11 +77,12 @@ struct SceneConfig {
   double max_speed = 100.0;    // m/s
   std::vector<Material> materials;
   std::vector<PairEntry> pairs;
-  std::vector<ParticleEntry> particles;  // [[particle]] entries, then packing-file rows
+  std::vector<ParticleEntry> particles;    // [[particle]] entries, then packing-file rows
   std::vector<std::string> packing_files;  // [[particles]] file = ..., resolved paths
   std::vector<ParticleBatch> batches;
   std::vector<Wall> walls;
   std::vector<int> wall_lines;
+  std::vector<WallLoad> wall_loads;  // one per wall
   OutputSettings output;
   toml::table source;  // the file as read, echoed into summary.json
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "core/simulation.hpp"
@@ -16,6 +17,7 @@
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/scene_builder.hpp"
+#include "io/wall_control.hpp"
 
 namespace grainlab {
 
@@ -45,6 +47,8 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
 
   const auto wall_start = std::chrono::steady_clock::now();
   Simulation sim(std::move(particles), config.walls, std::move(table), settings);
+  WallStressControl wall_servos(config.wall_loads);
+  if (!wall_servos.empty()) sim.attach(wall_servos);
   const std::string dir = options.out_dir;
   const long total_steps = static_cast<long>(std::ceil(config.duration / dt.time_step - 1e-9));
   if (!options.quiet)
@@ -61,6 +65,10 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
   if (config.output.trace_all)
     for (uint32_t i = 0; i < sim.particles().size(); ++i) traced.push_back(i);
   CsvStream trace(dir + "/trace.csv", trace_header);
+  std::vector<std::optional<double>> wall_areas;
+  for (const WallLoad& load : config.wall_loads) wall_areas.push_back(load.area);
+  std::optional<CsvStream> walls_csv;
+  if (!sim.walls().empty()) walls_csv.emplace(dir + "/walls.csv", walls_header(sim.walls()));
   std::vector<std::pair<double, std::string>> snapshots;
   if (config.output.vtk) std::filesystem::create_directories(dir + "/vtk");
 
@@ -72,6 +80,7 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
       for (uint32_t id : traced) rows += trace_row(sim.time(), p, where[id]);
       trace.write(rows);
     }
+    if (trace_due && walls_csv) walls_csv->write(walls_row(sim.time(), sim.walls(), wall_areas));
     if (vtk_due) {
       const std::string name = fmt::format("vtk/particles_{:08d}.vtu", step);
       write_file_atomically(dir + "/" + name, particles_vtu(p));
@@ -104,6 +113,7 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
                       fmt::format("t = {:.4g} s", sim.time()));
   }
   trace.close();
+  if (walls_csv) walls_csv->close();
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   write_file_atomically(dir + "/final.csv", final_table(sim.particles()));

@@ -14,6 +14,8 @@ using UnitTable = std::vector<std::pair<std::string_view, double>>;
 const UnitTable& units_of(Quantity q) {
   static const UnitTable none{{"", 1.0}, {"%", 0.01}};
   static const UnitTable length{{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"um", 1e-6}, {"µm", 1e-6}};
+  static const UnitTable area{{"m2", 1.0},    {"m^2", 1.0},  {"cm2", 1e-4},
+                              {"cm^2", 1e-4}, {"mm2", 1e-6}, {"mm^2", 1e-6}};
   static const UnitTable time{{"s", 1.0},   {"ms", 1e-3},  {"us", 1e-6}, {"µs", 1e-6},
                               {"ns", 1e-9}, {"min", 60.0}, {"h", 3600.0}};
   static const UnitTable pressure{{"Pa", 1.0}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
@@ -29,6 +31,8 @@ const UnitTable& units_of(Quantity q) {
       return none;
     case Quantity::length:
       return length;
+    case Quantity::area:
+      return area;
     case Quantity::time:
       return time;
     case Quantity::pressure:
@@ -63,6 +67,8 @@ const char* si_unit(Quantity q) {
       return "-";
     case Quantity::length:
       return "m";
+    case Quantity::area:
+      return "m^2";
     case Quantity::time:
       return "s";
     case Quantity::pressure:

@@ -10,6 +10,7 @@ namespace grainlab {
 enum class Quantity {
   dimensionless,
   length,
+  area,
   time,
   pressure,
   density,

@@ -280,7 +280,7 @@ def outputs_are_complete():
     with tempfile.TemporaryDirectory() as d:
         out = run_base(d, 2)
         names = sorted(os.listdir(out))
-        assert names == ["final.csv", "particles.pvd", "summary.json", "trace.csv", "vtk"], names
+        assert names == ["final.csv", "particles.pvd", "summary.json", "trace.csv", "vtk", "walls.csv"], names
         trace = open(os.path.join(out, "trace.csv")).read().splitlines()
         assert trace[0] == "t,id,x,y,z,vx,vy,vz,wx,wy,wz", trace[0]
         assert len(trace) == 1 + 3 * 5, len(trace)  # 3 traced particles at t = 0, 5, 10, 15, 20 us
@@ -298,7 +298,7 @@ def threads_give_identical_results():
     # 601 particles: above the size where the loops go parallel (core/particles.hpp)
     with tempfile.TemporaryDirectory() as d:
         one, two = run_base(d, 1), run_base(d, 2)
-        for name in ("final.csv", "trace.csv"):
+        for name in ("final.csv", "trace.csv", "walls.csv"):
             a = open(os.path.join(one, name)).read()
             b = open(os.path.join(two, name)).read()
             assert a == b, f"{name} differs between 1 and 2 threads"
@@ -477,6 +477,121 @@ def damped_pair_lowers_the_step():
 def explicit_step_above_the_stable_step_is_refused():
     text = DAMPED.replace("duration = 2e-5", "duration = 2e-5\ndt = 8e-8")
     expect_bad_packing(LATTICE, "scene.toml", "simulation.dt", "stable step", "rzs", toml_text=text)
+
+
+# --- wall loads ([[wall]] mass, force, target_stress, area, max_speed) and walls.csv -----------
+
+# BASE's plate and sleeve, and two walls far above the beads: a free piston with an initial
+# velocity and a constant force, and a servo-held lid that touches nothing yet
+LOADED = BASE.replace("[output]", """[[wall]]
+name = "piston"
+type = "plane"
+material = "steel"
+point = [0.0, 0.0, 0.1]
+normal = [0.0, 0.0, -1.0]
+velocity = [0.0, 0.0, -0.1]
+mass = "2 kg"
+force = [0.0, 0.0, -3.0]
+
+[[wall]]
+name = "lid"
+type = "rectangle"
+material = "steel"
+point = [0.0, 0.0, 0.09]
+normal = [0.0, 0.0, -1.0]
+size = ["30 mm", "20 mm"]
+target_stress = "10 kPa"
+max_speed = "0.5 m/s"
+
+[output]""")
+
+
+@check
+def wall_force_without_mass():
+    expect_bad(replace('mass = "2 kg"\n', "", LOADED), "wall[3].force", "mass")
+
+
+@check
+def wall_target_stress_on_cylinder():
+    expect_bad(replace("radius = 0.02\n", 'radius = 0.02\ntarget_stress = "10 kPa"\n', LOADED),
+               "wall[2].target_stress", "cylinder")
+
+
+@check
+def wall_target_stress_on_plane_without_area():
+    text = replace('type = "rectangle"', 'type = "plane"', LOADED)
+    expect_bad(replace('size = ["30 mm", "20 mm"]\n', "", text), "wall[4].area", "target_stress")
+    with tempfile.TemporaryDirectory() as d:  # with its area it runs
+        run_base(d, 2, replace('size = ["30 mm", "20 mm"]\n', 'area = "6 cm2"\n', text))
+
+
+@check
+def wall_target_stress_excludes_mass_force_velocity():
+    for extra in ('mass = "1 kg"', "force = [0.0, 0.0, 1.0]", "velocity = [0.0, 0.0, -0.1]"):
+        key = extra.split(" ")[0]
+        expect_bad(replace('max_speed = "0.5 m/s"', 'max_speed = "0.5 m/s"\n' + extra, LOADED),
+                   "wall[4].target_stress", f"excludes `{key}`")
+
+
+@check
+def wall_bad_loads():
+    expect_bad(replace('mass = "2 kg"', "mass = 0.0", LOADED), "wall[3].mass", "> 0 kg")
+    expect_bad(replace('target_stress = "10 kPa"', 'target_stress = "-10 kPa"', LOADED),
+               "wall[4].target_stress", "> 0 Pa")
+    expect_bad(replace('max_speed = "0.5 m/s"', "max_speed = 0.0", LOADED), "wall[4].max_speed", "> 0 m/s")
+    expect_bad(replace('mass = "2 kg"', 'mass = "2 kg"\nmax_speed = 1.0', LOADED), "wall[3].max_speed",
+               "target_stress")
+    expect_bad(replace('max_speed = "0.5 m/s"', 'max_speed = "0.5 m/s"\narea = 1e-4', LOADED),
+               "wall[4].area", "rectangle")
+    expect_bad(replace("radius = 0.02\n", 'radius = 0.02\narea = 1e-4\n', LOADED), "wall[2].area",
+               "cylinder")
+    expect_bad(replace('target_stress = "10 kPa"', 'target_stress = "10 kN"', LOADED),
+               "wall[4].target_stress", "unknown unit")
+
+
+@check
+def wall_names_head_walls_csv_columns():
+    expect_bad(replace('name = "lid"', 'name = "piston"', LOADED), "wall[4].name", "wall[3]")
+    expect_bad(replace('name = "lid"', 'name = "wall1"', LOADED), "wall[4].name", "wall[1]")
+    expect_bad(replace('name = "lid"', 'name = "lid,top"', LOADED), "wall[4].name", "commas")
+
+
+@check
+def walls_csv_and_wall_loads():
+    """walls.csv columns and schedule; the free piston follows z0 + v0 t + F t^2 / (2 m) (velocity
+    Verlet is exact for a constant force); the lid, touching nothing, approaches at max_speed."""
+    with tempfile.TemporaryDirectory() as d:
+        out = run_base(d, 2, LOADED)
+        lines = open(os.path.join(out, "walls.csv")).read().splitlines()
+        names = ["wall1", "wall2", "piston", "lid"]
+        columns = ["time_s"] + [f"{n}_{c}" for n in names for c in (
+            "force_x_N", "force_y_N", "force_z_N", "normal_stress_Pa", "contacts", "x_m", "y_m", "z_m")]
+        assert lines[0].split(",") == columns, lines[0]
+        rows = [dict(zip(columns, line.split(","))) for line in lines[1:]]
+        trace_times = sorted({float(line.split(",")[0]) for line in
+                              open(os.path.join(out, "trace.csv")).read().splitlines()[1:]})
+        assert [float(r["time_s"]) for r in rows] == trace_times, "same schedule as trace.csv"
+        assert len(rows) == 5, len(rows)
+        for r in rows:
+            t = float(r["time_s"])
+            assert r["wall2_normal_stress_Pa"] == "", "a cylinder has no area"
+            assert r["wall1_normal_stress_Pa"] == "", "a plane without area has no stress"
+            z = 0.1 - 0.1 * t - 0.5 * 3.0 / 2.0 * t * t
+            assert abs(float(r["piston_z_m"]) - z) < 1e-13, (t, r["piston_z_m"], z)  # F t^2/2m: 3e-10 m
+            z = 0.09 - 0.5 * t
+            assert abs(float(r["lid_z_m"]) - z) < 1e-13, (t, r["lid_z_m"], z)
+            assert float(r["lid_normal_stress_Pa"]) == 0.0 and r["lid_contacts"] == "0", r
+        # a bead resting on the plate (gravity on, overlap 1e-12 m, about its weight): with an area
+        # the plate reports -(F . n) / A, compressive positive
+        resting = replace("position = [0.0, 0.0, 0.0015]\nvelocity = [0.0, 0.0, -0.5]",
+                          "position = [0.0, 0.0, 0.000999999999]", LOADED)
+        out = run_base(d, 1, replace("normal = [0.0, 0.0, 1.0]\n",
+                                     'normal = [0.0, 0.0, 1.0]\narea = "4 cm2"\n', resting))
+        for line in open(os.path.join(out, "walls.csv")).read().splitlines()[1:]:
+            r = dict(zip(columns, line.split(",")))
+            force, stress = float(r["wall1_force_z_N"]), float(r["wall1_normal_stress_Pa"])
+            assert r["wall1_contacts"] == "1" and force < 0.0, r
+            assert abs(stress - (-force / 4e-4)) <= 1e-15 * stress and stress > 0.0, (force, stress)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ TEST(Units, ConvertsToSI) {
   EXPECT_DOUBLE_EQ(parse_quantity("6 mm/min", Quantity::velocity), 1e-4);
   EXPECT_DOUBLE_EQ(parse_quantity("2500 kg/m3", Quantity::density), 2500.0);
   EXPECT_DOUBLE_EQ(parse_quantity("15 %", Quantity::dimensionless), 0.15);
+  EXPECT_DOUBLE_EQ(parse_quantity("400 mm^2", Quantity::area), 4e-4);
+  EXPECT_DOUBLE_EQ(parse_quantity("2.5 cm2", Quantity::area), 2.5e-4);
   EXPECT_DOUBLE_EQ(parse_quantity("1e-3", Quantity::length), 1e-3);  // bare number: SI
 }
 
