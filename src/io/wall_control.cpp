@@ -13,7 +13,7 @@ WallStressControl::WallStressControl(const std::vector<WallLoad>& loads) {
     if (!loads[k].target_stress) continue;
     held_.push_back({k, *loads[k].area,
                      StressServo(ServoSettings{*loads[k].target_stress, loads[k].max_speed,
-                                               holding_proportional_gain})});
+                                               proportional_gain(ServoRegime::holding)})});
   }
 }
 

@@ -115,24 +115,30 @@ def triaxial_interrupt_and_resume():
         compare_runs(a, b)
 
 
-def triaxial_periodic_checkpoint_survives_kill():
+def kill_after_checkpoint_then_resume(d, path, polls):
+    """Runs `path` twice: once through, once killed (SIGKILL) just after its first periodic
+    checkpoint and resumed; both must give the same curve and summary."""
     import time
+    a, b = os.path.join(d, "a"), os.path.join(d, "b")
+    assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
+    p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
+    for _ in range(polls):
+        if os.path.exists(os.path.join(b, "checkpoint.bin")):
+            break
+        time.sleep(0.01)
+    time.sleep(0.3)
+    p.kill()  # no chance to write anything more
+    p.wait()
+    assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
+    r = run("run", "--resume", b, "--quiet", "--threads", "2")
+    assert r.returncode == 0, r.stderr
+    compare_runs(a, b)
+
+
+def triaxial_periodic_checkpoint_survives_kill():
     with tempfile.TemporaryDirectory() as d:
         path = prepared_tiny(d, 'checkpoint_interval = "0.5 s"')
-        a, b = os.path.join(d, "a"), os.path.join(d, "b")
-        assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
-        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
-        for _ in range(400):
-            if os.path.exists(os.path.join(b, "checkpoint.bin")):
-                break
-            time.sleep(0.01)
-        time.sleep(0.3)
-        p.kill()  # no chance to write anything more
-        p.wait()
-        assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
-        r = run("run", "--resume", b, "--quiet")
-        assert r.returncode == 0, r.stderr
-        compare_runs(a, b)
+        kill_after_checkpoint_then_resume(d, path, 400)
 
 
 def triaxial_vtk_snapshots():
@@ -344,27 +350,13 @@ def oedometer_small_example():
 def oedometer_checkpoint_survives_kill():
     """The generic element-test checkpoint: an oedometer run killed after a periodic checkpoint
     resumes (by its test type) to the same curve and summary as an uninterrupted run."""
-    import time
     with tempfile.TemporaryDirectory() as d:
         spec = os.path.join(d, "spec")
         assert run("prepare", OEDOMETER, "--out", spec, "--quiet").returncode == 0
         path = os.path.join(d, "oed.toml")
         open(path, "w").write(open(OEDOMETER).read().replace(
             "count = 500", f'count = 500\nspecimen = "{spec}"\ncheckpoint_interval = "0.5 s"'))
-        a, b = os.path.join(d, "a"), os.path.join(d, "b")
-        assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
-        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
-        for _ in range(2000):
-            if os.path.exists(os.path.join(b, "checkpoint.bin")):
-                break
-            time.sleep(0.01)
-        time.sleep(0.3)
-        p.kill()
-        p.wait()
-        assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
-        r = run("run", "--resume", b, "--quiet", "--threads", "2")
-        assert r.returncode == 0, r.stderr
-        compare_runs(a, b)
+        kill_after_checkpoint_then_resume(d, path, 2000)
 
 
 globals()[CHECK]()
