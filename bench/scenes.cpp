@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "contact/damping.hpp"
+#include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
 #include "geometry/cuboid_box.hpp"
@@ -34,9 +35,12 @@ PairTable reference_table(double youngs_modulus, double restitution, double fric
 
 SimulationSettings reference_settings(double min_radius, Vec3 gravity) {
   SimulationSettings s;
-  s.time_step =
-      dt_fraction * collision_duration(min_radius, glass_density, glass_E, glass_restitution);
-  s.dt_fraction = dt_fraction;
+  // The one time-step rule (contact/stability.hpp) for the benchmark's law.
+  const MaterialTimeStep step =
+      material_time_step(dt_fraction, reference_table(glass_E, glass_restitution, glass_friction),
+                         0, {0, 1}, min_radius, glass_density);
+  s.time_step = step.time_step;
+  s.dt_fraction = step.dt_fraction;
   s.gravity = gravity;
   s.skin = verlet_skin(2.0 * min_radius);
   return s;

@@ -30,11 +30,14 @@
 // particles of each material).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
 #include "contact/pair_table.hpp"
+#include "contact/time_step.hpp"
 
 namespace grainlab {
 
@@ -105,6 +108,38 @@ inline TimeStepChoiceForMaterial stable_time_step(double wanted, const PairTable
   const MaterialStepLimit limit = material_step_limit(table, particle_material, min_radius);
   if (wanted <= limit.time_step) return {wanted, {}};
   return {limit.time_step, limit.description};
+}
+
+// The time step of a run whose particles are all of one material (every laboratory test), by
+// the one rule: dt = dt_fraction x the shortest collision duration t_c (Eq. 11, at the smallest
+// radius) over the pairs in use, material with each of `partners` (itself, the walls' materials),
+// then lowered where a spring-dashpot of the material's pairs needs it (stable_time_step).
+// Scenes apply the same rule over their derived pairs (io/scene_builder.cpp, choose_time_step).
+struct MaterialTimeStep {
+  double time_step = 0.0;           // s
+  double collision_duration = 0.0;  // s, the shortest over the pairs in use
+  double dt_fraction = 0.0;         // time_step / collision_duration
+  std::string limited_by;           // empty when dt_fraction * t_c was kept
+};
+inline MaterialTimeStep material_time_step(double dt_fraction, const PairTable& table,
+                                           int particle_material,
+                                           std::initializer_list<int> partners, double min_radius,
+                                           double density) {
+  MaterialTimeStep out;
+  out.collision_duration = INFINITY;
+  for (int other : partners) {
+    const PairParams& p = table(particle_material, other);
+    if (p.defined)
+      out.collision_duration =
+          std::min(out.collision_duration,
+                   collision_duration(min_radius, density, p.youngs_modulus, p.restitution));
+  }
+  const TimeStepChoiceForMaterial step =
+      stable_time_step(dt_fraction * out.collision_duration, table, particle_material, min_radius);
+  out.time_step = step.time_step;
+  out.limited_by = step.limited_by;
+  out.dt_fraction = out.time_step / out.collision_duration;
+  return out;
 }
 
 }  // namespace grainlab

@@ -17,19 +17,12 @@
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/scene_builder.hpp"
+#include "io/summary_header.hpp"
 #include "io/wall_control.hpp"
 
 namespace grainlab {
 
-namespace {
-
-nlohmann::json toml_as_json(const toml::table& t) {
-  std::ostringstream s;
-  s << toml::json_formatter{t};
-  return nlohmann::json::parse(s.str());
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void run_scene(const std::string& config_path, const RunOptions& options) {
   // Everything that can be wrong with the input is found before anything is written.
@@ -118,10 +111,7 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   write_file_atomically(dir + "/final.csv", final_table(sim.particles()));
 
-  nlohmann::json summary;
-  summary["grainlab_version"] = version_string;
-  summary["config_file"] = config_path;
-  summary["inputs"] = toml_as_json(config.source);
+  nlohmann::json summary = summary_header(config_path, &config.source);
   summary["derived"] = derived_pairs_json(derived, dt);
   summary["derived"]["verlet_skin_m"] = settings.skin;
   summary["particles"] = sim.particles().size();

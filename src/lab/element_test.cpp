@@ -14,6 +14,7 @@
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
 #include "io/scene_builder.hpp"
+#include "io/summary_header.hpp"
 #include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "measure/boundary.hpp"
@@ -140,19 +141,30 @@ Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress) {
 
 ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& table,
                                   const ParticleStore& particles) {
-  const PairParams& beads = table(sp.bead_material, sp.bead_material);
   double r_min = 1e300;
   for (double r : particles.radius) r_min = std::min(r_min, r);
+  const MaterialTimeStep step = material_time_step(
+      sp.dt_fraction, table, sp.bead_material,
+      {sp.bead_material, sp.lateral_material, sp.platen_material}, r_min, sp.density);
   ElementTimeStep out;
-  out.collision_duration =
-      collision_duration(r_min, sp.density, beads.youngs_modulus, beads.restitution);
-  const TimeStepChoiceForMaterial step =
-      stable_time_step(sp.dt_fraction * out.collision_duration, table, sp.bead_material, r_min);
+  out.collision_duration = step.collision_duration;
   out.limited_by = step.limited_by;
   out.settings.time_step = step.time_step;
-  out.settings.dt_fraction = step.time_step / out.collision_duration;
+  out.settings.dt_fraction = step.dt_fraction;
   out.settings.skin = verlet_skin(sp.diameter);
   out.settings.step_key = SimulationSettings::StepKey::lab_test;
+  return out;
+}
+
+std::vector<std::vector<double>> curve_values(const std::string& rows) {
+  std::vector<std::vector<double>> out;
+  std::istringstream lines(rows);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<double> r;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) r.push_back(std::stod(f));
+    out.push_back(std::move(r));
+  }
   return out;
 }
 
@@ -179,12 +191,6 @@ nlohmann::json loading_json(const LoadingRate& rate, const ElementTestSettings& 
           {"rule", s.platen_speed ? "platen speed given (paper: 0.01 m/s)"
                                   : "fastest rate with I <= max_inertial_number"},
           {"max_inertial_number_bound", s.max_inertial_number}};
-}
-
-nlohmann::json inputs_json(const toml::table& root) {
-  std::ostringstream inputs;
-  inputs << toml::json_formatter{root};
-  return nlohmann::json::parse(inputs.str());
 }
 
 namespace {
@@ -223,10 +229,7 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
                              100 * state.max_stress_error, state.unbalanced));
         return true;
       });
-  nlohmann::json j;
-  j["grainlab_version"] = version_string;
-  j["config_file"] = path;
-  j["inputs"] = inputs_json(root);
+  nlohmann::json j = summary_header(path, &root);
   j["specimen"] = specimen_json(specimen);
   j["specimen"]["source"] =
       s.specimen_file ? *s.specimen_file : std::string("prepared in this run");

@@ -121,7 +121,7 @@ void peek_checkpoint(const std::string& path, std::string& type, std::string& co
 // Throws ConfigError for a missing or damaged checkpoint.
 ElementRun load_checkpoint(const std::string& path, PairTable table);
 
-// The JSON of the config's inputs.
-nlohmann::json inputs_json(const toml::table& root);
+// The rows of a curve.csv text as numbers (for summaries computed from the curve).
+std::vector<std::vector<double>> curve_values(const std::string& rows);
 
 }  // namespace grainlab

@@ -13,6 +13,7 @@
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
 #include "io/scene_builder.hpp"
+#include "io/summary_header.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/lab_config.hpp"
 
@@ -54,10 +55,11 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
     finish_wall_geometry(w);
     walls.push_back(w);
   }
-  const double t_c = collision_duration(r, bead_density, pair.youngs_modulus, pair.restitution);
+  const MaterialTimeStep step =
+      material_time_step(s.dt_fraction, table, bead, {target}, r, bead_density);
   SimulationSettings settings;
-  settings.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r).time_step;
-  settings.dt_fraction = settings.time_step / t_c;
+  settings.time_step = step.time_step;
+  settings.dt_fraction = step.dt_fraction;
   settings.gravity = {0.0, 0.0, -g};
   settings.skin = verlet_skin(2.0 * r);
   Simulation sim(std::move(p), walls, table, settings);
@@ -151,9 +153,7 @@ void run_flat_throw(const std::string& path, const toml::table& root, const RunO
   for (const auto& f : r.trajectory)
     csv += fmt::format("{},{},{}\n", exact(f.t), exact(f.x), exact(f.z));
   write_file_atomically(options.out_dir + "/trajectory.csv", csv);
-  nlohmann::json j;
-  j["grainlab_version"] = version_string;
-  j["config_file"] = path;
+  nlohmann::json j = summary_header(path);
   j["test"] = "flat_throw";
   j["bead_material"] = s.bead_material;
   j["target_material"] = s.target_material;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "calibrate/least_squares.hpp"
 #include "control/box_controller.hpp"
@@ -12,18 +11,18 @@
 #include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "measure/boundary.hpp"
+#include "measure/interval_stresses.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
 namespace {
 
 struct OedometerState {  // plain values, saved as they are
-  long step = 0, steps_per_output = 1, samples = 0, particle_samples = 0;
+  long step = 0, steps_per_output = 1;
   int phase = 1;  // +1 loading, -1 unloading, 0 done
   double platen_speed = 0, max_axial_stress = 0, unload_stress = 0, max_axial_strain = 0;
   Vec3 size0;
-  std::array<double, 6> wall_sum{}, integrals{};
-  std::array<double, 3> particle_sum{};
+  IntervalStresses interval;
 };
 
 constexpr const char* header =
@@ -53,17 +52,11 @@ class Compression : public LoadingStage {
   }
 
   void after_step(ElementRun& run) override {
-    const std::vector<Wall>& w = run.sim.walls();
-    for (int k = 0; k < 6; ++k) s_.wall_sum[k] += wall_stress(w, k);
-    ++s_.samples;
-    if (s_.step++ % 50 == 0) {  // the Love-Weber sum is a pass over all contacts
-      const Tensor3 lw = love_weber_stress(run.sim, box_volume(w));
-      for (int a = 0; a < 3; ++a) s_.particle_sum[a] += lw[a][a];
-      ++s_.particle_samples;
-    }
+    s_.interval.add_walls(run.sim);
+    if (s_.step++ % 50 == 0) s_.interval.add_specimen(run.sim);  // a pass over all contacts
     if (s_.step % s_.steps_per_output != 0) return;
     // The turning points are decided on the interval averages (a step's wall force rattles).
-    const double axial = record(run), strain = box_strain(s_.size0, box_size(w)).z;
+    const double axial = record(run), strain = box_strain(s_.size0, box_size(run.sim.walls())).z;
     if (s_.phase == 1 && strain > s_.max_axial_strain)
       throw ConfigError(
           fmt::format("test.max_axial_stress: {:.4g} Pa not reached by axial strain "
@@ -89,17 +82,10 @@ class Compression : public LoadingStage {
   // returns the row's axial stress.
   double record(ElementRun& run) {
     const Simulation& sim = run.sim;
-    if (s_.samples == 0) {
-      for (int k = 0; k < 6; ++k) s_.wall_sum[k] = wall_stress(sim.walls(), k);
-      const Tensor3 lw = love_weber_stress(sim, box_volume(sim.walls()));
-      for (int a = 0; a < 3; ++a) s_.particle_sum[a] = lw[a][a];
-      s_.samples = s_.particle_samples = 1;
-    }
-    std::array<double, 3> wall, particles;
-    for (int a = 0; a < 3; ++a) {
-      wall[a] = 0.5 * (s_.wall_sum[2 * a] + s_.wall_sum[2 * a + 1]) / s_.samples;
-      particles[a] = s_.particle_sum[a] / std::max(1L, s_.particle_samples);
-    }
+    const IntervalStresses::Averages averaged = s_.interval.take(sim);
+    const std::array<double, 3>& particles = averaged.particle;
+    std::array<double, 3> wall;
+    for (int a = 0; a < 3; ++a) wall[a] = 0.5 * (averaged.wall[2 * a] + averaged.wall[2 * a + 1]);
     const Vec3 strain = box_strain(s_.size0, box_size(sim.walls()));
     run.curve_rows +=
         fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", exact(sim.time()), s_.phase,
@@ -109,8 +95,6 @@ class Compression : public LoadingStage {
                     exact(0.5 * (particles[0] + particles[1]) / particles[2]),
                     exact(solid_fraction(sim.particles(), box_volume(sim.walls()))),
                     exact(coordination_number(sim)));
-    s_.wall_sum = {}, s_.particle_sum = {};
-    s_.samples = s_.particle_samples = 0;
     return wall[2];
   }
 
@@ -130,14 +114,7 @@ double slope(const std::vector<std::vector<double>>& rows, int x, int y, Use use
 }
 
 void finish(const ElementRun& run, const std::string& dir, bool quiet) {
-  std::vector<std::vector<double>> rows;  // the curve, columns as in the header
-  std::istringstream lines(run.curve_rows);
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<double> r;
-    std::istringstream fields(line);
-    for (std::string f; std::getline(fields, f, ',');) r.push_back(std::stod(f));
-    rows.push_back(r);
-  }
+  const std::vector<std::vector<double>> rows = curve_values(run.curve_rows);
   enum { phase = 1, strain = 2, sv = 5, sh = 6, k0w = 11, k0p = 12 };
   size_t top = 0;
   for (size_t i = 0; i < rows.size(); ++i)

@@ -5,6 +5,7 @@
 #include "grainlab/version.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
+#include "io/summary_header.hpp"
 #include "lab/flat_throw.hpp"
 #include "lab/interrupt.hpp"
 #include "lab/lab_test.hpp"
@@ -95,9 +96,8 @@ void run_prepare(const std::string& path, const RunOptions& options) {
   Progress progress("grainlab prepare", options.quiet);
   const Specimen s = prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
   save_specimen(options.out_dir + "/specimen.csv", s);
-  nlohmann::json j = specimen_json(s);
-  j["grainlab_version"] = version_string;
-  j["config_file"] = path;
+  nlohmann::json j = summary_header(path);
+  j.update(specimen_json(s));
   j["confining_stress_Pa"] = c.settings.specimen.confining_stress;
   j["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -35,11 +35,12 @@ struct Bed {
 SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTable& table, int bead,
                                 double density) {
   const double r_min = 0.5 * s.diameter * 0.99;
-  const PairParams& pp = table(bead, bead);
+  // The bed's box is made of the bead material; the slider touches the beads.
+  const MaterialTimeStep step = material_time_step(
+      s.dt_fraction, table, bead, {bead, table.find(s.slider_material)}, r_min, density);
   SimulationSettings out;
-  const double t_c = collision_duration(r_min, density, pp.youngs_modulus, pp.restitution);
-  out.time_step = stable_time_step(s.dt_fraction * t_c, table, bead, r_min).time_step;
-  out.dt_fraction = out.time_step / t_c;  // below s.dt_fraction if stability lowered it
+  out.time_step = step.time_step;
+  out.dt_fraction = step.dt_fraction;  // below s.dt_fraction if stability lowered it
   out.gravity = {0.0, 0.0, -s.gravity};
   out.skin = verlet_skin(s.diameter);
   return out;

@@ -10,6 +10,7 @@
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/scene_builder.hpp"
+#include "io/summary_header.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/lab_config.hpp"
 #include "lab/sliding_friction.hpp"
@@ -127,9 +128,8 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   Progress progress("sliding friction", options.quiet, 2.0);
   SlidingFrictionResult r = simulate_sliding_friction(s, table, density, &progress);
 
-  nlohmann::json j = result_json(r);
-  j["grainlab_version"] = version_string;
-  j["config_file"] = path;
+  nlohmann::json j = summary_header(path);
+  j.update(result_json(r));
   j["test"] = "sliding_friction";
   j["pulling_speed_m_per_s"] = s.speed;
   j["fixed_bed"] = s.fixed_bed;

@@ -138,14 +138,16 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   // The step must be stable for the compaction contacts (more damped) and the measured ones
   // (restored at the end), by the one rule of contact/stability.hpp.
   SimulationSettings settings;
-  const double t_c = collision_duration(r_min, s.density, glass.youngs_modulus, glass.restitution);
+  const MaterialTimeStep step = material_time_step(
+      s.dt_fraction, original, s.bead_material,
+      {s.bead_material, s.lateral_material, s.platen_material}, r_min, s.density);
   PairTable measured_friction = table;
   set_compaction_contacts(measured_friction, original, s, -1.0, s.compaction_restitution);
   settings.time_step = std::min(
-      {stable_time_step(s.dt_fraction * t_c, original, s.bead_material, r_min).time_step,
-       stable_time_step(s.dt_fraction * t_c, table, s.bead_material, r_min).time_step,
-       stable_time_step(s.dt_fraction * t_c, measured_friction, s.bead_material, r_min).time_step});
-  settings.dt_fraction = settings.time_step / t_c;  // below s.dt_fraction if stability lowered it
+      {step.time_step, stable_time_step(step.time_step, table, s.bead_material, r_min).time_step,
+       stable_time_step(step.time_step, measured_friction, s.bead_material, r_min).time_step});
+  // below s.dt_fraction if stability lowered it
+  settings.dt_fraction = settings.time_step / step.collision_duration;
   settings.skin = verlet_skin(s.diameter);
   settings.step_key = SimulationSettings::StepKey::lab_test;
   Simulation sim(std::move(particles),

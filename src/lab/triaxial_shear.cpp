@@ -56,30 +56,11 @@ std::string TriaxialShear::position() const {
   return fmt::format("axial strain {:.2f} %", 100 * axial_strain_);
 }
 
-// Adds the Love-Weber and boundary-average diagonals to the interval sums.
-void TriaxialShear::add_specimen_stresses(const Simulation& sim) {
-  ShearProgress& p = p_;
-  const Vec3 lo = box_low(sim.walls()), hi = box_high(sim.walls());
-  const double volume = box_volume(sim.walls());
-  const Tensor3 particles = love_weber_stress(sim, volume);
-  const Tensor3 boundary = boundary_stress(sim, 0.5 * (lo + hi), volume);
-  for (int a = 0; a < 3; ++a) {
-    p.particle_stress_sum[a] += particles[a][a];
-    p.boundary_stress_sum[a] += boundary[a][a];
-  }
-}
-
 // Adds this step's stresses to the running sums of the output interval.
 void TriaxialShear::after_step(ElementRun& run) {
-  const Simulation& sim = run.sim;
-  ShearProgress& p = p_;
-  for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] += wall_stress(sim.walls(), k);
-  ++p.wall_samples;
-  if (p.step % stress_sample_steps == 0) {
-    add_specimen_stresses(sim);
-    ++p.particle_samples;
-  }
-  ++p.step;
+  p_.interval.add_walls(run.sim);
+  if (p_.step % stress_sample_steps == 0) p_.interval.add_specimen(run.sim);
+  ++p_.step;
 }
 
 void TriaxialShear::observe(ElementRun& run, Progress& progress) {
@@ -109,19 +90,9 @@ void TriaxialShear::record(ElementRun& run) {
   const Vec3 size = box_high(sim.walls()) - box_low(sim.walls());
   const double axial_strain = (p.size0.z - size.z) / p.size0.z;
   const double volume = size.x * size.y * size.z, volume0 = p.size0.x * p.size0.y * p.size0.z;
-  if (p.wall_samples == 0) {  // first row: the state itself
-    for (int k = 0; k < 6; ++k) p.wall_stress_sum[k] = wall_stress(sim.walls(), k);
-    p.wall_samples = 1;
-    add_specimen_stresses(sim);
-    p.particle_samples = 1;
-  }
-  std::array<double, 6> w;
-  for (int k = 0; k < 6; ++k) w[k] = p.wall_stress_sum[k] / p.wall_samples;
-  std::array<double, 3> particle, boundary;
-  for (int a = 0; a < 3; ++a) {
-    particle[a] = p.particle_stress_sum[a] / std::max(1L, p.particle_samples);
-    boundary[a] = p.boundary_stress_sum[a] / std::max(1L, p.particle_samples);
-  }
+  const IntervalStresses::Averages averaged = p.interval.take(sim);
+  const std::array<double, 6>& w = averaged.wall;
+  const std::array<double, 3>&particle = averaged.particle, &boundary = averaged.boundary;
   const double sa = 0.5 * (w[bottom] + w[top]);
   const double sx = 0.5 * (w[x_low] + w[x_high]);
   const double sy = 0.5 * (w[y_low] + w[y_high]);
@@ -156,11 +127,6 @@ void TriaxialShear::record(ElementRun& run) {
   p.peak_ratio = std::max(p.peak_ratio, deviator / mean);
   p.last_axial = sa;
   p.last_strain = axial_strain;
-  p.wall_stress_sum = {};
-  p.wall_samples = 0;
-  p.particle_stress_sum = {};
-  p.boundary_stress_sum = {};
-  p.particle_samples = 0;
 }
 
 // A ParaView snapshot: particles with velocity, displacement since the start, rotation and

@@ -9,6 +9,7 @@
 
 #include "control/box_controller.hpp"
 #include "lab/element_test.hpp"
+#include "measure/interval_stresses.hpp"
 
 namespace grainlab {
 
@@ -27,13 +28,9 @@ struct ShearProgress {  // plain values, saved as they are
   double vtk_strain_interval = 0;  // 0: no snapshots
   long next_vtk = 0;
   std::array<double, 6> servo_integral{};
-  // Averages over the current output interval (a laboratory load cell integrates too): the six
-  // wall stresses every step, the Love-Weber and boundary-average diagonals every
-  // `stress_sample_steps` steps (the same steps, so they differ only by the particles' inertia).
-  std::array<double, 6> wall_stress_sum{};
-  long wall_samples = 0;
-  std::array<double, 3> particle_stress_sum{}, boundary_stress_sum{};
-  long particle_samples = 0;
+  // Averages over the current output interval: wall stresses every step, the specimen's
+  // stresses every `stress_sample_steps` steps.
+  IntervalStresses interval;
 };
 
 inline constexpr long stress_sample_steps = 50;
@@ -56,7 +53,6 @@ class TriaxialShear : public LoadingStage {
  private:
   void record(ElementRun& run);
   void snapshot(ElementRun& run);
-  void add_specimen_stresses(const Simulation& sim);
 
   ShearProgress p_;
   double axial_strain_ = 0.0;  // at the last observe
