@@ -248,6 +248,23 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   return run;
 }
 
+ElementRun begin_element_test(const std::string& type, const std::string& path,
+                              const toml::table& root, const ElementTestConfig& c,
+                              const RunOptions& options) {
+  check_specimen_file(path, c.settings);
+  prepare_output_dir(options.out_dir, options.overwrite);
+  install_interrupt_handler();
+  Progress preparing("grainlab " + type, options.quiet);
+  return start_element_test(type, path, root, c, options.out_dir, preparing);
+}
+
+void load_to_end(ElementRun& run, LoadingStage& stage, double checkpoint_interval_s,
+                 const RunOptions& options) {
+  Progress progress("grainlab " + run.type, options.quiet);
+  run_loading(run, stage, options.out_dir, checkpoint_interval_s, progress);
+  progress.finish(fmt::format("{} steps", run.sim.step_count()));
+}
+
 void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
                  double checkpoint_interval_s, Progress& progress) {
   const auto session_start = std::chrono::steady_clock::now();

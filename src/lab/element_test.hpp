@@ -22,6 +22,7 @@
 #include "core/simulation.hpp"
 #include "io/progress.hpp"
 #include "io/scene_config.hpp"
+#include "io/scene_run.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/specimen.hpp"
 
@@ -94,6 +95,25 @@ ElementRun start_element_test(const std::string& type, const std::string& config
                               const toml::table& root, const ElementTestConfig& c,
                               const std::string& out_dir, Progress& progress);
 
+// The first steps of every element test's run: the specimen file checked, the output directory
+// prepared, Ctrl-C handled, then start_element_test.
+ElementRun begin_element_test(const std::string& type, const std::string& config_path,
+                              const toml::table& root, const ElementTestConfig& c,
+                              const RunOptions& options);
+
+// A stage's own state (plain values) into a checkpoint and back.
+template <class T>
+void store_test_state(ElementRun& run, const T& state) {
+  StateWriter out;
+  out.value(state);
+  run.test_state = out.bytes();
+}
+template <class T>
+T restored_test_state(const ElementRun& run) {
+  StateReader in(run.test_state);
+  return in.value<T>();
+}
+
 // One test's loading. run_loading calls, per step: observe (record outputs when due), then,
 // unless finished, Simulation::step (the test's controller is attached to the simulation) and
 // after_step (accumulate).
@@ -113,6 +133,9 @@ class LoadingStage {
 // time and on Ctrl-C / SIGTERM (then throws Interrupted); curve.csv at the end.
 void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
                  double checkpoint_interval_s, Progress& progress);
+// run_loading into options.out_dir with a progress line "grainlab TYPE".
+void load_to_end(ElementRun& run, LoadingStage& stage, double checkpoint_interval_s,
+                 const RunOptions& options);
 
 void save_checkpoint(const ElementRun& run, const std::string& path);
 // The test type and config stored in a checkpoint (to rebuild the pair table before loading it).

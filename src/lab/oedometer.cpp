@@ -8,7 +8,6 @@
 #include "control/box_controller.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
-#include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "measure/boundary.hpp"
 #include "measure/interval_stresses.hpp"
@@ -45,11 +44,7 @@ class Compression : public LoadingStage {
   long step() const override { return s_.step; }
   bool finished(const ElementRun&) const override { return s_.phase == 0; }
   std::string position() const override { return fmt::format("step {}", s_.step); }
-  void save(ElementRun& run) const override {
-    StateWriter out;
-    out.value(s_);
-    run.test_state = out.bytes();
-  }
+  void save(ElementRun& run) const override { store_test_state(run, s_); }
 
   void after_step(ElementRun& run) override {
     s_.interval.add_walls(run.sim);
@@ -149,10 +144,8 @@ void finish(const ElementRun& run, const std::string& dir, bool quiet) {
 
 void load_and_finish(ElementRun& run, const OedometerState& s, const OedometerConfig& c,
                      const RunOptions& options) {
-  Progress progress("grainlab oedometer", options.quiet);
   Compression stage(run, s);
-  run_loading(run, stage, options.out_dir, c.settings.checkpoint_interval, progress);
-  progress.finish(fmt::format("{} steps", run.sim.step_count()));
+  load_to_end(run, stage, c.settings.checkpoint_interval, options);
   finish(run, options.out_dir, options.quiet);
 }
 
@@ -183,11 +176,7 @@ OedometerConfig read_oedometer_config(const std::string& path, const toml::table
 
 void run_oedometer(const std::string& path, const toml::table& root, const RunOptions& options) {
   const OedometerConfig c = read_oedometer_config(path, root);
-  check_specimen_file(path, c.settings);
-  prepare_output_dir(options.out_dir, options.overwrite);
-  install_interrupt_handler();
-  Progress preparing("grainlab oedometer", options.quiet);
-  ElementRun run = start_element_test("oedometer", path, root, c, options.out_dir, preparing);
+  ElementRun run = begin_element_test("oedometer", path, root, c, options);
   OedometerState s;
   s.size0 = box_size(run.sim.walls());
   const LoadingRate rate = loading_rate(c.settings, s.size0.z);
@@ -205,9 +194,8 @@ void run_oedometer(const std::string& path, const toml::table& root, const RunOp
 }
 
 void resume_oedometer(ElementRun run, const toml::table& root, const RunOptions& options) {
-  StateReader in(run.test_state);
-  load_and_finish(run, in.value<OedometerState>(), read_oedometer_config(run.config_path, root),
-                  options);
+  load_and_finish(run, restored_test_state<OedometerState>(run),
+                  read_oedometer_config(run.config_path, root), options);
 }
 
 }  // namespace grainlab

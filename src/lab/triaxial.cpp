@@ -72,10 +72,8 @@ void finish_triaxial(const ElementRun& run, const ShearProgress& p, const std::s
 
 void shear_and_finish(ElementRun& run, const ShearProgress& start, const TriaxialConfig& c,
                       const RunOptions& options) {
-  Progress progress("grainlab triaxial", options.quiet);
   TriaxialShear stage(run, start, options.out_dir);
-  run_loading(run, stage, options.out_dir, c.settings.checkpoint_interval, progress);
-  progress.finish(fmt::format("{} steps", run.sim.step_count()));
+  load_to_end(run, stage, c.settings.checkpoint_interval, options);
   finish_triaxial(run, stage.progress(), options.out_dir, options.quiet);
 }
 
@@ -95,11 +93,7 @@ void run_triaxial(const std::string& path, const toml::table& root, const RunOpt
   const TriaxialConfig c = read_triaxial_config(path, root);
   const ElementTestSettings& s = c.settings;
   const SpecimenSettings& sp = s.specimen;
-  check_specimen_file(path, s);
-  prepare_output_dir(options.out_dir, options.overwrite);
-  install_interrupt_handler();
-  Progress preparing("grainlab triaxial", options.quiet);
-  ElementRun run = start_element_test("triaxial", path, root, c, options.out_dir, preparing);
+  ElementRun run = begin_element_test("triaxial", path, root, c, options);
   ShearProgress p;
   p.size0 = box_size(run.sim.walls());
   const LoadingRate rate = loading_rate(s, p.size0.z);

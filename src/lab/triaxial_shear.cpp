@@ -36,16 +36,13 @@ TriaxialShear::TriaxialShear(ElementRun& run, const ShearProgress& progress, con
 }
 
 ShearProgress TriaxialShear::restore(const ElementRun& run) {
-  StateReader in(run.test_state);
-  return in.value<ShearProgress>();
+  return restored_test_state<ShearProgress>(run);
 }
 
 void TriaxialShear::save(ElementRun& run) const {
   ShearProgress p = p_;
   p.servo_integral = control_.integrals();
-  StateWriter out;
-  out.value(p);
-  run.test_state = out.bytes();
+  store_test_state(run, p);
 }
 
 const char* TriaxialShear::curve_header() const {
