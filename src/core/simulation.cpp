@@ -77,6 +77,14 @@ void Simulation::half_kick() {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
 
+void Simulation::set_wall_geometry(size_t k, const Wall& g) {
+  Wall& w = walls_[k];
+  if (g.shape != w.shape)
+    throw std::invalid_argument("set_wall_geometry: the shape must not change");
+  w.point = g.point, w.normal = g.normal, w.axis_u = g.axis_u, w.axis_v = g.axis_v;
+  w.half_u = g.half_u, w.half_v = g.half_v, w.axis = g.axis, w.radius = g.radius;
+}
+
 void Simulation::clear_external_forces() {
   std::fill(particles_.external_force.begin(), particles_.external_force.end(), Vec3{});
   external_forces_ = false;

@@ -58,6 +58,9 @@ class Simulation {
   // indices are storage indices, which change at each neighbour-list rebuild (see particles().id).
   void set_wall_velocity(size_t wall, const Vec3& velocity) { walls_[wall].velocity = velocity; }
   void set_wall_point(size_t wall, const Vec3& point) { walls_[wall].point = point; }
+  // A wall that changes shape or turns: its geometry (point, normal, axes, sizes, radius) from
+  // `geometry`; its velocity, mass and forces are kept.
+  void set_wall_geometry(size_t wall, const Wall& geometry);
   void set_wall_external_force(size_t wall, const Vec3& force) {
     walls_[wall].external_force = force;
   }
