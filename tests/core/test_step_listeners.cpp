@@ -117,3 +117,25 @@ TEST(PairTableCommand, RefusesATableWithOtherPieces) {
   EXPECT_THROW(sim.set_pair_table(two_material_table(0.5, 0.3, 5.0)), std::invalid_argument)
       << "a rolling-resistance piece cannot appear after construction";
 }
+
+// A blow-up names the config key of the time step of the kind of run it is in.
+TEST(BlowUpAdvice, NamesTheTimeStepKeyOfLabTests) {
+  for (const auto key :
+       {SimulationSettings::StepKey::scene, SimulationSettings::StepKey::lab_test}) {
+    ParticleStore p;
+    p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
+    SimulationSettings s = settings_for(1e-3, 0.9, 0.1);
+    s.step_key = key;
+    Simulation sim(std::move(p), {}, two_material_table(0.9, 0.1), s);
+    sim.set_particle_velocity(0, {1e3, 0, 0});  // above max_speed
+    try {
+      sim.step();
+      FAIL() << "a particle above max_speed must stop the run";
+    } catch (const BlowUpError& e) {
+      const std::string message = e.what();
+      const bool lab = key == SimulationSettings::StepKey::lab_test;
+      EXPECT_EQ(message.find("test.dt_fraction") != std::string::npos, lab) << message;
+      EXPECT_EQ(message.find("simulation.dt_fraction") != std::string::npos, !lab) << message;
+    }
+  }
+}
