@@ -347,6 +347,23 @@ def oedometer_small_example():
         assert rows[-1]["phase"] == -1 and rows[-1]["axial_stress_walls_Pa"] <= 150e3  # unloaded
 
 
+def oedometer_bad_input():
+    """Oedometer keys are checked before anything is written, by run and by prepare alike."""
+    text = open(OEDOMETER).read()
+    for old, new, key in (('max_axial_stress = "600 kPa"', 'max_axial_stress = "100 kPa"', "test.max_axial_stress"),
+                          ('unload_stress = "150 kPa"', 'unload_stress = "700 kPa"', "test.unload_stress"),
+                          ("count = 500", "count = 500\nmax_axial_strian = 0.1", "test.max_axial_strian")):
+        assert old in text, old
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "oed.toml")
+            open(path, "w").write(text.replace(old, new, 1))
+            for command in (["run"], ["prepare"]):
+                r = run(*command, path, "--out", os.path.join(d, "o"))
+                assert r.returncode == 2 and key in r.stderr and "oed.toml" in r.stderr, (command, r.stderr)
+                assert not os.path.exists(os.path.join(d, "o"))
+            print("refused:", r.stderr.strip())
+
+
 def oedometer_checkpoint_survives_kill():
     """The generic element-test checkpoint: an oedometer run killed after a periodic checkpoint
     resumes (by its test type) to the same curve and summary as an uninterrupted run."""
