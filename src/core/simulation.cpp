@@ -272,6 +272,54 @@ Simulation::Simulation(StateReader& in, PairTable table)
   time_ = in.value<double>(), step_count_ = in.value<long>();
   max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
   external_forces_ = in.value<bool>();
+  check_restored_state();
+}
+
+// A restored state is used as it is, so every index it holds is checked first: a damaged or
+// foreign checkpoint must stop with a message, never index out of bounds.
+void Simulation::check_restored_state() const {
+  auto fail = [](const std::string& what) {
+    throw std::runtime_error("inconsistent state: " + what);
+  };
+  const ParticleStore& p = particles_;
+  const size_t n = p.size();
+  const_cast<ParticleStore&>(p).for_each_field([&](const auto& field) {
+    if (field.size() != n) fail("particle fields of different lengths");
+  });
+  const int materials = table_.material_count();
+  for (size_t i = 0; i < n; ++i) {
+    if (p.material[i] < 0 || p.material[i] >= materials)
+      fail(fmt::format("particle {} has material index {} (the config has {})", i, p.material[i],
+                       materials));
+    if (!(p.radius[i] > 0.0 && std::isfinite(p.radius[i])) || !(p.inverse_mass[i] >= 0.0) ||
+        !std::isfinite(norm2(p.position[i])) || p.id[i] >= n)
+      fail(fmt::format("particle {} has an invalid radius, mass, position or id", i));
+  }
+  for (const Wall& w : walls_)
+    if (w.material < 0 || w.material >= materials)
+      fail(fmt::format("wall {} has material index {}", w.name, w.material));
+  auto check_rows = [&](const std::vector<uint32_t>& rows, size_t entries, const char* what) {
+    if (rows.size() != n + 1 || rows.front() != 0 || rows.back() != entries)
+      fail(std::string(what) + " rows do not match the particles");
+    for (size_t i = 0; i < n; ++i)
+      if (rows[i] > rows[i + 1]) fail(std::string(what) + " rows are not ordered");
+  };
+  const PairContacts& c = pairs_;
+  check_rows(c.row_start, c.partner.size(), "pair");
+  check_rows(c.col_start, c.col_pair.size(), "pair column");
+  for (uint32_t j : c.partner)
+    if (j >= n) fail("a pair entry names a particle that does not exist");
+  for (uint32_t e : c.col_pair)
+    if (e >= c.partner.size()) fail("a pair column names an entry that does not exist");
+  const_cast<PairContacts&>(c).for_each_field([&](const auto& field) {
+    if (field.size() != c.partner.size() && field.size() != n + 1 && !field.empty() &&
+        field.size() != c.col_pair.size())
+      fail("pair contact fields of unexpected length");
+  });
+  const WallContacts& wc = wall_contacts_;
+  check_rows(wc.row_start, wc.wall.size(), "wall contact");
+  for (uint32_t w : wc.wall)
+    if (w >= walls_.size()) fail("a wall contact names a wall that does not exist");
 }
 
 }  // namespace grainlab

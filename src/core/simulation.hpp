@@ -105,7 +105,8 @@ class Simulation {
   void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
-  const char* step_key() const;  // the config key of the time step, for advice
+  void check_restored_state() const;  // after loading a checkpoint; std::runtime_error
+  const char* step_key() const;       // the config key of the time step, for advice
 
   ParticleStore particles_;
   std::vector<Wall> walls_;

@@ -4,9 +4,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
@@ -134,7 +136,7 @@ Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress) {
   if (c.settings.specimen_file) {
     std::string file = *c.settings.specimen_file;
     if (std::filesystem::is_directory(file)) file += "/specimen.csv";
-    return load_specimen(file, c.settings.specimen.density);
+    return load_specimen(file, c.settings.specimen.density, c.settings.specimen.bead_material);
   }
   return prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
 }
@@ -312,7 +314,28 @@ void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
 
 namespace {
 
-constexpr uint64_t checkpoint_magic = 0x67726e6c656c7431;  // "grnlelt1"
+constexpr uint64_t checkpoint_magic = 0x67726e6c656c7432;  // "grnlelt2"
+
+// FNV-1a over the checkpoint's bytes, stored at its end: a damaged file is refused instead of
+// resuming to a different result.
+uint64_t checksum(std::string_view bytes) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
+  return h;
+}
+
+// The checkpoint without its checksum, after verifying it.
+std::string verified(std::string bytes, const std::string& path) {
+  uint64_t stored = 0;
+  if (bytes.size() < sizeof stored)
+    throw ConfigError(fmt::format("{}: damaged checkpoint (truncated)", path));
+  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
+  bytes.resize(bytes.size() - sizeof stored);
+  if (checksum(bytes) != stored)
+    throw ConfigError(fmt::format(
+        "{}: damaged checkpoint (checksum mismatch): it cannot be resumed; rerun the test", path));
+  return bytes;
+}
 
 std::string read_all(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -336,12 +359,13 @@ void save_checkpoint(const ElementRun& run, const std::string& path) {
   out.text(run.test_state);
   out.value(run.wall_time_before);
   run.sim.save_state(out);
+  out.value(checksum(out.bytes()));
   write_file_atomically(path, out.bytes());
 }
 
 void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
                      std::string& config_text) {
-  StateReader in(read_all(path));
+  StateReader in(verified(read_all(path), path));
   try {
     if (in.value<uint64_t>() != checkpoint_magic)
       throw std::runtime_error("not a grainlab element-test checkpoint");
@@ -354,7 +378,7 @@ void peek_checkpoint(const std::string& path, std::string& type, std::string& co
 }
 
 ElementRun load_checkpoint(const std::string& path, PairTable table) {
-  StateReader in(read_all(path));
+  StateReader in(verified(read_all(path), path));
   try {
     if (in.value<uint64_t>() != checkpoint_magic)
       throw std::runtime_error("not a grainlab element-test checkpoint");

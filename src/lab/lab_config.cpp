@@ -7,7 +7,15 @@
 namespace grainlab {
 
 SceneConfig read_lab_materials(const std::string& path, const toml::table& root) {
-  check_top_level_keys(root, path, true);
+  // A test builds its own particles, walls, time step and outputs: a scene table here would be
+  // silently ignored, so it is an error.
+  for (const auto& [key, value] : root)
+    if (key.str() != "test" && key.str() != "material" && key.str() != "pair")
+      throw ConfigError(fmt::format(
+          "{} line {}: {}: a config with a [test] table reads only [test], [[material]] and "
+          "[[pair]]; this table would be ignored (a test sets its own particles, walls, time "
+          "step and outputs through [test] keys, docs/lab-tests.md)",
+          path, value.source().begin.line, key.str()));
   SceneConfig c;
   c.file = path;
   read_materials(root, c);

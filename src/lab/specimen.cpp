@@ -206,7 +206,7 @@ void save_specimen(const std::string& path, const Specimen& s) {
   write_file_atomically(path, text);
 }
 
-Specimen load_specimen(const std::string& path, double density) {
+Specimen load_specimen(const std::string& path, double density, int bead_material) {
   std::ifstream in(path);
   if (!in) throw ConfigError(fmt::format("{}: cannot read the specimen file", path));
   Specimen s;
@@ -217,6 +217,9 @@ Specimen load_specimen(const std::string& path, double density) {
                   &s.low.x, &s.low.y, &s.low.z, &s.high.x, &s.high.y, &s.high.z) != 6)
     throw ConfigError(
         fmt::format("{} line 1: expected '# grainlab specimen: box low X Y Z high X Y Z'", path));
+  for (int a = 0; a < 3; ++a)
+    if (!(std::isfinite(s.low[a]) && std::isfinite(s.high[a]) && s.high[a] > s.low[a]))
+      throw ConfigError(fmt::format("{} line 1: expected a finite box with high > low", path));
   std::getline(in, line);
   ++number;
   if (line != "id,material,radius,x,y,z")
@@ -224,15 +227,31 @@ Specimen load_specimen(const std::string& path, double density) {
   while (std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
-    unsigned id;
-    int material;
+    long long id;
+    long long material;
     double r, x, y, z;
-    if (std::sscanf(line.c_str(), "%u,%d,%lf,%lf,%lf,%lf", &id, &material, &r, &x, &y, &z) != 6 ||
-        !(r > 0) || id != s.particles.size())
+    char rest;
+    if (std::sscanf(line.c_str(), "%lld,%lld,%lf,%lf,%lf,%lf%c", &id, &material, &r, &x, &y, &z,
+                    &rest) != 6 ||
+        id != static_cast<long long>(s.particles.size()) || !(r > 0) || !std::isfinite(r))
       throw ConfigError(fmt::format(
-          "{} line {}: expected id,material,radius,x,y,z with ids 0, 1, 2, ... and radius > 0",
+          "{} line {}: expected id,material,radius,x,y,z with ids 0, 1, 2, ... and a finite "
+          "radius > 0",
           path, number));
-    s.particles.add(id, material, r, density, {x, y, z}, {}, {}, false);
+    if (material != bead_material)
+      throw ConfigError(
+          fmt::format("{} line {}: material {} is not the bead material of the config (index {})",
+                      path, number, material, bead_material));
+    const Vec3 centre{x, y, z};
+    for (int a = 0; a < 3; ++a)
+      if (!(centre[a] >= s.low[a] && centre[a] <= s.high[a]))
+        throw ConfigError(
+            fmt::format("{} line {}: the centre ({}, {}, {}) is not a finite point inside the box",
+                        path, number, x, y, z));
+    if (s.particles.size() >= 20'000'000)
+      throw ConfigError(fmt::format("{} line {}: more than 20 million particles", path, number));
+    s.particles.add(static_cast<uint32_t>(id), static_cast<int32_t>(material), r, density, centre,
+                    {}, {}, false);
   }
   if (s.particles.size() == 0) throw ConfigError(fmt::format("{}: no particles", path));
   s.solid_fraction = solid_fraction(

@@ -80,6 +80,9 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
 // Exactly reloadable text form (17 significant digits): one header line with the box, then
 // id,material,radius,x,y,z per particle.
 void save_specimen(const std::string& path, const Specimen& specimen);
-Specimen load_specimen(const std::string& path, double density);  // throws ConfigError
+// Every record is checked before use (ConfigError naming the file and line): ids 0, 1, 2, ...,
+// the material index equal to the config's bead material, finite coordinates inside the box,
+// a finite radius > 0.
+Specimen load_specimen(const std::string& path, double density, int bead_material);
 
 }  // namespace grainlab

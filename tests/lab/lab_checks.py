@@ -2,6 +2,7 @@
 """End-to-end checks of virtual laboratory tests.  usage: lab_checks.py GRAINLAB SOURCE_DIR CHECK"""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -65,6 +66,13 @@ def triaxial_box_smaller_than_particle():
 
 def triaxial_more_particles_than_fit():
     expect_bad_triaxial("count = 500", "count = 5000", "test.count", "more particles than fit")
+
+
+def lab_config_with_scene_tables():
+    """Scene tables in a test config would be ignored: each is refused, naming it and its line."""
+    for table in ('[output]\nvtk = true', '[simulation]\ndt_fraction = 0.05', '[[wall]]\ntype = "plane"'):
+        expect_bad_triaxial("[[material]]", table + "\n\n[[material]]", table.split("\n")[0].strip("[]"),
+                            "reads only [test]")
 
 
 def triaxial_unknown_key():
@@ -362,6 +370,54 @@ def oedometer_bad_input():
                 assert r.returncode == 2 and key in r.stderr and "oed.toml" in r.stderr, (command, r.stderr)
                 assert not os.path.exists(os.path.join(d, "o"))
             print("refused:", r.stderr.strip())
+
+
+def specimen_file_corrupt():
+    """A damaged specimen file stops the run with exit 2 naming the file and line: a material
+    index out of range (once a crash), a NaN coordinate, a centre outside the box, a gap in ids."""
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d)
+        spec = os.path.join(d, "spec", "specimen.csv")
+        good = open(spec).read().split("\n")
+        fields = good[2].split(",")
+        for damage, fragment in ((["0", "100000000"] + fields[2:], "material 100000000"),
+                                 (fields[:3] + ["nan"] + fields[4:], "line 3"),
+                                 (fields[:3] + ["1.0"] + fields[4:], "inside the box"),
+                                 (["7"] + fields[1:], "ids 0, 1, 2")):
+            open(spec, "w").write("\n".join(good[:2] + [",".join(damage)] + good[3:]))
+            out = os.path.join(d, "o")
+            r = run("run", path, "--out", out, "--quiet")
+            assert r.returncode == 2 and "specimen.csv" in r.stderr and fragment in r.stderr, r.stderr
+            assert not os.path.exists(os.path.join(out, "curve.csv"))
+            shutil.rmtree(out, ignore_errors=True)
+            print("refused:", r.stderr.strip())
+
+
+def checkpoint_corrupt():
+    """A checkpoint with one byte changed, or cut short, is refused (exit 2, the file named)
+    instead of resuming to a different result; the intact one still resumes."""
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d, 'checkpoint_interval = "0.5 s"')
+        b = os.path.join(d, "b")
+        p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
+        ck = os.path.join(b, "checkpoint.bin")
+        for _ in range(400):
+            if os.path.exists(ck):
+                break
+            time.sleep(0.01)
+        time.sleep(0.3)
+        p.kill()
+        p.wait()
+        intact = open(ck, "rb").read()
+        for damaged in (intact[:len(intact) // 2] + bytes([intact[len(intact) // 2] ^ 0x10]) +
+                        intact[len(intact) // 2 + 1:], intact[:-100]):
+            open(ck, "wb").write(damaged)
+            r = run("run", "--resume", b, "--quiet")
+            assert r.returncode == 2 and "checkpoint.bin" in r.stderr and "damaged" in r.stderr, r.stderr
+            print("refused:", r.stderr.strip())
+        open(ck, "wb").write(intact)
+        assert run("run", "--resume", b, "--quiet").returncode == 0
 
 
 def oedometer_checkpoint_survives_kill():

@@ -62,7 +62,7 @@ TEST(SpecimenPreparation, SavedSpecimenReloadsExactly) {
   const Specimen s = prepare_cuboid_specimen(settings, reference_pairs(), nullptr);
   const std::string path = ::testing::TempDir() + "/specimen.csv";
   save_specimen(path, s);
-  const Specimen back = load_specimen(path, 2500.0);
+  const Specimen back = load_specimen(path, 2500.0, 0);
   ASSERT_EQ(back.particles.size(), s.particles.size());
   EXPECT_EQ(back.particles.position, s.particles.position);
   EXPECT_EQ(back.particles.radius, s.particles.radius);
