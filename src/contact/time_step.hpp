@@ -21,4 +21,10 @@ inline double collision_duration(double min_radius, double density, double young
 
 inline constexpr double default_dt_fraction = 0.1;
 
+// The most steps grainlab takes in one run (or one stage of a test). A run that would need more
+// (a duration, a speed or a material constant off by orders of magnitude) is refused up front
+// with the number and the key to change; 1e9 steps of the reference specimen are a month on two
+// cores.
+inline constexpr double max_steps_per_run = 1e9;
+
 }  // namespace grainlab

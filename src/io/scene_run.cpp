@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "contact/time_step.hpp"
 #include "core/simulation.hpp"
 #include "grainlab/version.hpp"
 #include "io/config_error.hpp"
@@ -32,6 +33,13 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
   const std::vector<DerivedPair> derived = derive_pairs(config, table, particles);
   const TimeStepChoice dt = choose_time_step(config, derived);
   const SimulationSettings settings = simulation_settings(config, dt, particles);
+  const double steps_needed = config.duration / dt.time_step;
+  if (!(steps_needed <= max_steps_per_run))
+    throw ConfigError(fmt::format(
+        "{}: simulation.duration: {:.4g} s at dt = {:.4g} s needs {:.3g} steps, more than grainlab "
+        "runs ({:.0e}); shorten the duration, or check the materials' E and density, which set "
+        "the time step",
+        config_path, config.duration, dt.time_step, steps_needed, max_steps_per_run));
   for (uint32_t id : config.output.trace_ids)
     if (id >= particles.size())
       throw ConfigError(fmt::format("{}: output.trace: particle id {} does not exist (ids 0..{})",

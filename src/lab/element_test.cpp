@@ -170,6 +170,24 @@ std::vector<std::vector<double>> curve_values(const std::string& rows) {
   return out;
 }
 
+void check_step_budget(const ElementTestConfig& c, double max_axial_strain, int passes,
+                       const TableReader& t) {
+  const SpecimenSettings& sp = c.settings.specimen;
+  const double r_min = 0.5 * (sp.diameter - sp.diameter_tolerance);
+  const double dt = material_time_step(sp.dt_fraction, c.table, sp.bead_material,
+                                       {sp.bead_material, sp.lateral_material, sp.platen_material},
+                                       r_min, sp.density)
+                        .time_step;
+  const double height = sp.nominal_box.z;
+  const double speed = loading_rate(c.settings, height).platen_speed;
+  const double steps = passes * max_axial_strain * height / (2.0 * speed) / dt;
+  if (!(steps <= max_steps_per_run))
+    t.fail(c.settings.platen_speed ? "platen_speed" : "max_inertial_number",
+           fmt::format("the loading would take about {:.3g} steps (dt = {:.3g} s), more than "
+                       "grainlab runs ({:.0e}); load faster",
+                       steps, dt, max_steps_per_run));
+}
+
 void check_specimen_file(const std::string& path, const ElementTestSettings& s) {
   if (s.specimen_file && !std::filesystem::exists(*s.specimen_file))
     throw ConfigError(

@@ -51,6 +51,11 @@ struct ElementTestConfig {
 ElementTestConfig read_element_test_keys(const std::string& path, const toml::table& root,
                                          TableReader& t, const ElementTestSettings& defaults = {});
 
+// ConfigError naming the loading key unless the loading to `max_axial_strain` (both ways when
+// `passes` = 2) fits in max_steps_per_run steps, estimated from the nominal box and beads.
+void check_step_budget(const ElementTestConfig& c, double max_axial_strain, int passes,
+                       const TableReader& t);
+
 // The loaded specimen file or a freshly prepared specimen.
 Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress);
 nlohmann::json specimen_json(const Specimen& s);

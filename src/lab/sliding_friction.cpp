@@ -185,6 +185,10 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
 
 }  // namespace
 
+double sliding_time_step(const SlidingFrictionSettings& s, const PairTable& table, double density) {
+  return settings_for(s, table, table.find(s.bead_material), density).time_step;
+}
+
 SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
                                                 const PairTable& table, double density,
                                                 Progress* progress) {

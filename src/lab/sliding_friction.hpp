@@ -70,6 +70,9 @@ struct SlidingFrictionResult {
 
 class Progress;
 // The bed is deposited once and reused for every load.
+// The time step of the test and the steps one pull takes (slide_distance / speed / dt).
+double sliding_time_step(const SlidingFrictionSettings& s, const PairTable& table, double density);
+
 SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
                                                 const PairTable& table, double bead_density,
                                                 Progress* progress = nullptr);

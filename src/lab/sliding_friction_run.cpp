@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "contact/time_step.hpp"
 #include "grainlab/version.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
@@ -121,6 +122,12 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
   if (!c.materials[bead].density) t.fail("bead_material", "the bead material needs a density");
   require_pair(t, table, "bead_material", bead, bead);
   require_pair(t, table, "slider_material", bead, slider);
+  const double pull_steps =
+      s.slide_distance / s.speed / sliding_time_step(s, table, *c.materials[bead].density);
+  if (!(pull_steps <= max_steps_per_run))
+    t.fail("speed", fmt::format("a pull of slide_distance / speed would take {:.3g} steps, more "
+                                "than grainlab runs ({:.0e})",
+                                pull_steps, max_steps_per_run));
   t.finish();
 
   prepare_output_dir(options.out_dir, options.overwrite);

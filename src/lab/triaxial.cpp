@@ -85,6 +85,7 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
   c.max_axial_strain = t.number_or("max_axial_strain", Quantity::dimensionless, c.max_axial_strain);
   if (!(c.max_axial_strain > 0 && c.max_axial_strain < 0.5))
     t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
+  check_step_budget(c, c.max_axial_strain, 1, t);
   t.finish();
   return c;
 }

@@ -105,6 +105,15 @@ def check(f):
 
 
 @check
+def run_that_would_never_end():
+    """A duration or a material constant off by orders of magnitude would need more steps than
+    grainlab runs: refused up front with the step count, not left running."""
+    expect_bad(replace("duration = 2e-5", 'duration = "1e300 s"'), "simulation.duration", "steps")
+    expect_bad(replace("density = 2500.0", 'density = "2.5e-30 kg/m3"'), "simulation.duration",
+               "steps", "density")
+
+
+@check
 def unknown_key():
     expect_bad(replace("seed = 3", "seed = 3\nsede = 4"), "simulation.sede", "unknown key", "line 7")
 

@@ -75,6 +75,21 @@ def lab_config_with_scene_tables():
                             "reads only [test]")
 
 
+def lab_runs_that_would_never_end():
+    """Loading so slow that the run would take more steps than grainlab runs is refused before
+    anything starts, naming the key: a platen speed of 1e-12 m/s, a sliding speed of 1e-320 m/s."""
+    expect_bad_triaxial('loading = "inertial"', 'loading = "speed"\nplaten_speed = "1e-12 m/s"',
+                        "test.platen_speed", "steps")
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s.toml")
+        open(path, "w").write(text.replace('speed = "0.1 m/s"', 'speed = "1e-320 m/s"'))
+        r = run("run", path, "--out", os.path.join(d, "o"))
+        assert r.returncode == 2 and "test.speed" in r.stderr and "steps" in r.stderr, r.stderr
+        assert not os.path.exists(os.path.join(d, "o"))
+        print("refused:", r.stderr.strip())
+
+
 def triaxial_unknown_key():
     expect_bad_triaxial("count = 500", "count = 500\nconfinig_stress = 1", "test.confinig_stress", "unknown key")
 
