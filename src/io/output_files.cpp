@@ -11,41 +11,14 @@
 #include <stdexcept>
 
 #include "io/config_error.hpp"
+#include "io/output_manifest.hpp"
 #include "io/wall_control.hpp"
 
 namespace grainlab {
 namespace fs = std::filesystem;
 
-void prepare_output_dir(const std::string& dir, bool overwrite) {
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec))
-      throw ConfigError(fmt::format("--out {}: exists and is not a directory", dir));
-    if (!fs::is_empty(dir, ec) && !overwrite)
-      throw ConfigError(fmt::format(
-          "--out {}: directory exists and is not empty; choose another directory or pass "
-          "--overwrite to replace its results",
-          dir));
-    if (overwrite) {
-      // Remove only what grainlab writes there, never foreign files.
-      for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        const std::string name = entry.path().filename().string();
-        const std::string ext = entry.path().extension().string();
-        if (name == "summary.json" || name == "trace.csv" || name == "final.csv" ||
-            name == "particles.pvd" || name == "curve.csv" || name == "curve.png" ||
-            name == "specimen.csv" || name == "specimen.json" || name == "trajectory.csv" ||
-            name == "force_time.csv" || name.ends_with(".partial") || name == "vtk" ||
-            name == "checkpoint.bin" || name == "walls.csv" || ext == ".tmp")
-          fs::remove_all(entry.path(), ec);
-      }
-    }
-  }
-  fs::create_directories(dir, ec);
-  if (ec)
-    throw ConfigError(fmt::format("--out {}: cannot create directory: {}", dir, ec.message()));
-}
-
 void write_file_atomically(const std::string& path, const std::string& content) {
+  record_output(path);
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -58,6 +31,7 @@ void write_file_atomically(const std::string& path, const std::string& content) 
 }
 
 CsvStream::CsvStream(std::string path, const std::string& header) : path_(std::move(path)) {
+  record_output(path_);
   file_ = std::fopen((path_ + ".partial").c_str(), "w");
   if (!file_) throw std::runtime_error("cannot write " + path_ + ".partial");
   std::fputs((header + "\n").c_str(), file_);

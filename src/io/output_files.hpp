@@ -9,12 +9,9 @@
 
 #include "core/particles.hpp"
 #include "geometry/wall.hpp"
+#include "io/output_manifest.hpp"
 
 namespace grainlab {
-
-// Creates `dir` for results. An existing non-empty directory is refused (ConfigError) unless
-// `overwrite`, in which case the files grainlab writes are replaced.
-void prepare_output_dir(const std::string& dir, bool overwrite);
 
 // Writes `content` to `path` via a temporary file and rename, so a reader never sees half a file.
 void write_file_atomically(const std::string& path, const std::string& content);

@@ -78,6 +78,7 @@ void resume_lab_test(const RunOptions& options) {
     throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, type));
   const ElementTestConfig c = e.element_config(path, root);
   install_interrupt_handler();
+  continue_in_output_dir(options.out_dir);
   e.resume(load_checkpoint(checkpoint, c.table), root, options);
 }
 

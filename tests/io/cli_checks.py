@@ -249,6 +249,39 @@ def existing_output_not_overwritten():
         assert open(os.path.join(out, "precious.txt")).read() == "keep me", "foreign files survive"
 
 
+@check
+def overwrite_removes_only_what_grainlab_wrote():
+    """--overwrite removes the files listed in the directory's manifest and nothing else: a
+    user's vtk/ directory with a ParaView state, a checkpoint.bin-like draft, *.tmp notes survive
+    a scene run that writes none of them; the scene's own results are replaced; a user's file with
+    the name of a result is refused, not overwritten; the manifest lists what was written."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "scene.toml")
+        with open(path, "w") as f:
+            f.write(BASE)
+        out = os.path.join(d, "out")
+        assert run(["run", path, "--out", out, "--quiet"], d).returncode == 0
+        listed = open(os.path.join(out, ".grainlab-outputs")).read().split()
+        assert "summary.json" in listed and "trace.csv" in listed, listed
+        os.makedirs(os.path.join(out, "vtk"), exist_ok=True)
+        mine = {"vtk/view.pvsm": "paraview state", "draft.tmp": "notes", "curve.png": "my plot",
+                "checkpoint.bin": "not grainlab's"}
+        for name, text in mine.items():
+            with open(os.path.join(out, name), "w") as f:
+                f.write(text)
+        r = run(["run", path, "--out", out, "--overwrite", "--quiet"], d)
+        # curve.png and checkpoint.bin carry names of grainlab results: refused, left as they are
+        assert r.returncode == 2 and "not written by grainlab" in r.stderr, r.stderr
+        for name in ("curve.png", "checkpoint.bin"):
+            assert open(os.path.join(out, name)).read() == mine.pop(name)
+            os.remove(os.path.join(out, name))
+        r = run(["run", path, "--out", out, "--overwrite", "--quiet"], d)
+        assert r.returncode == 0, r.stderr
+        for name, text in mine.items():
+            assert open(os.path.join(out, name)).read() == text, name
+        assert os.path.exists(os.path.join(out, "summary.json"))
+
+
 def expect_blow_up(config_text, *fragments):
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "scene.toml")
@@ -289,7 +322,12 @@ def outputs_are_complete():
     with tempfile.TemporaryDirectory() as d:
         out = run_base(d, 2)
         names = sorted(os.listdir(out))
-        assert names == ["final.csv", "particles.pvd", "summary.json", "trace.csv", "vtk", "walls.csv"], names
+        assert names == [".grainlab-outputs", "final.csv", "particles.pvd", "summary.json", "trace.csv", "vtk",
+                         "walls.csv"], names
+        # the manifest lists every result file (and the vtk directory), nothing else
+        written = {os.path.relpath(os.path.join(r, f), out) for r, _, fs in os.walk(out) for f in fs}
+        listed = open(os.path.join(out, ".grainlab-outputs")).read().split()
+        assert set(listed) == (written - {".grainlab-outputs"}) | {"vtk/"}, (sorted(listed), sorted(written))
         trace = open(os.path.join(out, "trace.csv")).read().splitlines()
         assert trace[0] == "t,id,x,y,z,vx,vy,vz,wx,wy,wz", trace[0]
         assert len(trace) == 1 + 3 * 5, len(trace)  # 3 traced particles at t = 0, 5, 10, 15, 20 us
