@@ -55,6 +55,9 @@ Command add_run_command(CLI::App& app) {
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());
               return exit_bad_input;
+            } catch (const UnreliableResult& e) {
+              fmt::print(stderr, "grainlab: error: {}\n", e.what());
+              return exit_failed;
             } catch (const BlowUpError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());
               return exit_failed;

@@ -8,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,14 @@
 #include "lab/element_test.hpp"
 
 namespace grainlab {
+
+// Thrown (after the results are written, with the warning in summary.json) when the number a
+// test exists to measure came out meaningless, e.g. a friction fit with R^2 near zero: the run
+// exits with code 1 and the message says what to change.
+class UnreliableResult : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct LabTestEntry {
   const char* type;         // value of test.type

@@ -14,6 +14,7 @@
 #include "io/summary_header.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/lab_config.hpp"
+#include "lab/lab_test.hpp"
 #include "lab/sliding_friction.hpp"
 
 namespace grainlab {
@@ -59,6 +60,9 @@ nlohmann::json result_json(const SlidingFrictionResult& r) {
           {"time_step_s", r.time_step},
           {"loads", runs}};
 }
+
+// Below this, an F-P fit is no measurement of the friction.
+constexpr double min_r_squared = 0.9;
 
 }  // namespace
 
@@ -222,8 +226,23 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
           best, *target, best_f, best_se,
           reached ? "" : " -- target not reachable below mu_s = 1.5");
   }
+  // The apparent friction is the test's whole point: a fit that explains little of F against P,
+  // or a slope <= 0, is no measurement (the bed too small or the pull too short for steady
+  // sliding). Written with a warning, and the run fails.
+  const bool unreliable = !(r.r_squared >= min_r_squared && r.friction_apparent > 0);
+  if (unreliable)
+    j["warning"] =
+        fmt::format("unreliable: the F-P fit has R^2 = {:.3g} (below {}) or a slope <= 0 ({:.3g})",
+                    r.r_squared, min_r_squared, r.friction_apparent);
   write_file_atomically(options.out_dir + "/force_time.csv", csv);
   write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
+  if (unreliable)
+    throw UnreliableResult(fmt::format(
+        "{}: the apparent friction {:.4g} is not a measurement: its F-P fit has R^2 = {:.3g} "
+        "(needs >= {}) and the slope must be > 0. The slider did not reach steady sliding: use a "
+        "longer test.slide_distance, more test.layers or a larger bed (results written, with this "
+        "warning in summary.json)",
+        path, r.friction_apparent, r.r_squared, min_r_squared));
   progress.finish(fmt::format("{} beads, {} loads", r.bead_count, r.runs.size()));
   if (!options.quiet) {
     fmt::print(

@@ -317,6 +317,25 @@ def sliding_friction_on_beads():
         assert header == "normal_load_N,t_s,pulled_m,rope_force_N,slider_z_m", header
 
 
+def sliding_unreliable_fit_fails():
+    """One layer and a 0.5 mm pull never reach steady sliding (it once reported mu = -0.062 with
+    R^2 = -17.4 and exit 0): the results are written with a warning and the run exits with 1."""
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    for old, new in (('bed_length = "32 mm"', 'bed_length = "20 mm"'), ('bed_width = "16 mm"', 'bed_width = "10 mm"'),
+                     ("layers = 4", "layers = 1"), ('slide_distance = "8 mm"', 'slide_distance = "0.5 mm"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s.toml")
+        open(path, "w").write(text)
+        out = os.path.join(d, "o")
+        r = run("run", path, "--out", out, "--quiet")
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        print("apparent", summary["friction_apparent"], "R^2", summary["r_squared"], "exit", r.returncode)
+        assert r.returncode == 1 and "R^2" in r.stderr and "slide_distance" in r.stderr, r.stderr
+        assert "unreliable" in summary["warning"], summary.get("warning")
+
+
 def sliding_inverse_on_fixed_beads():
     """Inverse mode on the Coulomb check (fixed beads, where the apparent friction equals the
     input mu_s exactly): asked for the laboratory's 0.2116 it must return mu_s = 0.2116."""
