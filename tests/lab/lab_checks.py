@@ -296,7 +296,7 @@ def sliding_friction_on_beads():
     """The example's interface shear test on a smaller bed (150 beads: 3 layers, 20 x 10 mm, 4 mm
     pulls): over four loads F is proportional to P (R^2 > 0.95, the issue's requirement) and the
     apparent friction is finite and below the input mu_s = 0.21, because beads under the slider
-    roll instead of sliding (measured 0.189, the same as on the example's 512-bead bed)."""
+    roll instead of sliding (measured 0.163, R^2 0.989; the example's 512-bead bed gives 0.183)."""
     text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
     for old, new in (('bed_length = "32 mm"', 'bed_length = "20 mm"'), ('bed_width = "16 mm"', 'bed_width = "10 mm"'),
                      ("layers = 4", "layers = 3"), ('slide_distance = "8 mm"', 'slide_distance = "4 mm"')):
