@@ -6,6 +6,8 @@
 #include "io/config_error.hpp"
 #include "io/derived_report.hpp"
 #include "io/scene_builder.hpp"
+#include "io/toml_reader.hpp"
+#include "lab/lab_test.hpp"
 
 namespace grainlab::app {
 
@@ -14,13 +16,18 @@ Command add_params_command(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   CLI::App* sub = app.add_subcommand(
       "params", "show the contact constants derived for each material pair of a config");
-  sub->add_option("config", *config, "scene configuration (TOML)")->required();
+  sub->add_option("config", *config, "scene or element-test configuration (TOML)")->required();
   sub->add_flag("--json", *json, "print JSON instead of a table");
   return {sub, [config, json] {
             try {
-              const SceneConfig c = load_scene(*config);
+              // A scene, or an element test seen as the scene it runs (its beads and box).
+              const toml::table root = parse_toml_file(*config);
+              ElementTestScene test;
+              if (root.contains("test")) test = element_test_scene(*config, root);
+              const SceneConfig c = root.contains("test") ? test.scene : load_scene(*config);
               const PairTable table = build_pair_table(c);
-              const ParticleStore particles = build_particles(c);
+              const ParticleStore particles =
+                  root.contains("test") ? test.particles : build_particles(c);
               const auto pairs = derive_pairs(c, table, particles);
               const TimeStepChoice dt = choose_time_step(c, pairs);
               if (*json)

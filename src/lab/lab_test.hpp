@@ -46,6 +46,16 @@ void run_lab_test(const std::string& config_path, const toml::table& root,
 // produces the same files as an uninterrupted run.
 void resume_lab_test(const RunOptions& options);
 
+// What `grainlab params` shows for an element-test config: the config's materials and pairs as
+// a scene of the test's smallest beads (two, so their own pair counts) and its box of walls, so
+// the derived constants and the time step are those the test runs with. ConfigError for a test
+// without a specimen.
+struct ElementTestScene {
+  SceneConfig scene;
+  ParticleStore particles;
+};
+ElementTestScene element_test_scene(const std::string& config_path, const toml::table& root);
+
 // `grainlab prepare CONFIG --out DIR`: the preparation of an element test's specimen alone.
 void run_prepare(const std::string& config_path, const RunOptions& options);
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "geometry/cuboid_box.hpp"
 #include "grainlab/version.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
@@ -80,6 +81,24 @@ void resume_lab_test(const RunOptions& options) {
   install_interrupt_handler();
   continue_in_output_dir(options.out_dir);
   e.resume(load_checkpoint(checkpoint, c.table), root, options);
+}
+
+ElementTestScene element_test_scene(const std::string& path, const toml::table& root) {
+  const LabTestEntry& e = entry_for(path, root);
+  if (!e.element_config)
+    throw ConfigError(
+        fmt::format("{}: test.type: grainlab params shows the constants of scenes "
+                    "and element tests (triaxial, oedometer), not of a {} test",
+                    path, e.type));
+  const ElementTestConfig c = e.element_config(path, root);
+  const SpecimenSettings& sp = c.settings.specimen;
+  ElementTestScene out{c.scene, {}};
+  out.scene.dt_fraction = sp.dt_fraction;
+  out.scene.walls = cuboid_walls({}, sp.nominal_box, sp.lateral_material, sp.platen_material);
+  const double r_min = 0.5 * (sp.diameter - sp.diameter_tolerance);
+  for (uint32_t id = 0; id < 2; ++id)
+    out.particles.add(id, sp.bead_material, r_min, sp.density, {}, {}, {}, false);
+  return out;
 }
 
 void run_prepare(const std::string& path, const RunOptions& options) {

@@ -96,6 +96,31 @@ def lab_runs_that_would_never_end():
         print("refused:", r.stderr.strip())
 
 
+def params_of_element_tests():
+    """grainlab params accepts an element-test config and shows the constants the test runs
+    with: every pair of the beads (with each other, with the lateral walls, with the platens),
+    and a time step equal to the one the oedometer test reports (the same rule; params takes the
+    smallest radius the specimen may draw, the run the smallest it drew, so within 1 %)."""
+    with tempfile.TemporaryDirectory() as d:
+        r = run("params", OEDOMETER, "--json")
+        assert r.returncode == 0, r.stderr
+        p = json.loads(r.stdout)
+        names = sorted(tuple(x["materials"]) for x in p["pairs"])
+        assert names == [("glass", "glass"), ("glass", "greased_ring"), ("glass", "porous_stone")], names
+        dt_params = p["time_step_s"]
+        spec = os.path.join(d, "spec")
+        assert run("prepare", OEDOMETER, "--out", spec, "--quiet").returncode == 0
+        path = os.path.join(d, "oed.toml")
+        open(path, "w").write(open(OEDOMETER).read().replace("count = 500", f'count = 500\nspecimen = "{spec}"'))
+        out = os.path.join(d, "o")
+        assert run("run", path, "--out", out, "--quiet").returncode == 0
+        dt_run = json.load(open(os.path.join(out, "summary.json")))["time_step_s"]
+        print("dt params", dt_params, "dt run", dt_run)
+        assert dt_params <= dt_run <= 1.01 * dt_params
+        r = run("params", os.path.join(SRC, "examples/paper/flat_throw_glass.toml"))
+        assert r.returncode == 2 and "flat_throw" in r.stderr, r.stderr
+
+
 def triaxial_unknown_key():
     expect_bad_triaxial("count = 500", "count = 500\nconfinig_stress = 1", "test.confinig_stress", "unknown key")
 
