@@ -376,26 +376,28 @@ void read_output(const toml::table& root, SceneConfig& c) {
   if (c.output.vtk_interval == 0.0) c.output.vtk_interval = c.output.interval;
 }
 
-void check_top_level_keys(const toml::table& root, const std::string& file, bool allow_test) {
+namespace {
+void check_top_level_keys(const toml::table& root, const std::string& file) {
   for (const auto& [key, value] : root) {
     static const char* known[] = {"simulation", "material", "pair",  "particle",
                                   "particles",  "wall",     "output"};
-    bool ok = allow_test && key.str() == "test";
+    bool ok = false;
     for (const char* k : known) ok = ok || key.str() == k;
     if (!ok)
       throw ConfigError(
           fmt::format("{} line {}: {}: unknown top-level key (known: simulation, "
-                      "material, pair, particle, particles, wall, output{})",
-                      file, value.source().begin.line, key.str(), allow_test ? ", test" : ""));
+                      "material, pair, particle, particles, wall, output)",
+                      file, value.source().begin.line, key.str()));
   }
 }
+}  // namespace
 
 SceneConfig load_scene(const std::string& path) {
   SceneConfig c;
   c.file = path;
   c.source = parse_toml_file(path);
   const toml::table& root = c.source;
-  check_top_level_keys(root, path, false);
+  check_top_level_keys(root, path);
   read_simulation(root, c);
   read_materials(root, c);
   read_pairs(root, c);

@@ -92,7 +92,6 @@ SceneConfig load_scene(const std::string& path);
 
 // The sections one by one, for virtual laboratory tests (src/lab) that build part of the scene
 // themselves. Each fills its part of `c` (c.file names the file in messages).
-void check_top_level_keys(const toml::table& root, const std::string& file, bool allow_test);
 void read_simulation(const toml::table& root, SceneConfig& c);
 void read_materials(const toml::table& root, SceneConfig& c);
 void read_pairs(const toml::table& root, SceneConfig& c);

@@ -145,9 +145,7 @@ ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& t
                                   const ParticleStore& particles) {
   double r_min = 1e300;
   for (double r : particles.radius) r_min = std::min(r_min, r);
-  const MaterialTimeStep step = material_time_step(
-      sp.dt_fraction, table, sp.bead_material,
-      {sp.bead_material, sp.lateral_material, sp.platen_material}, r_min, sp.density);
+  const MaterialTimeStep step = specimen_time_step(sp, table, r_min);
   ElementTimeStep out;
   out.collision_duration = step.collision_duration;
   out.limited_by = step.limited_by;
@@ -170,14 +168,18 @@ std::vector<std::vector<double>> curve_values(const std::string& rows) {
   return out;
 }
 
+double read_max_axial_strain(const ElementTestConfig& c, double fallback, int passes,
+                             TableReader& t) {
+  const double strain = t.number_or("max_axial_strain", Quantity::dimensionless, fallback);
+  if (!(strain > 0 && strain < 0.5)) t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
+  check_step_budget(c, strain, passes, t);
+  return strain;
+}
+
 void check_step_budget(const ElementTestConfig& c, double max_axial_strain, int passes,
                        const TableReader& t) {
   const SpecimenSettings& sp = c.settings.specimen;
-  const double r_min = 0.5 * (sp.diameter - sp.diameter_tolerance);
-  const double dt = material_time_step(sp.dt_fraction, c.table, sp.bead_material,
-                                       {sp.bead_material, sp.lateral_material, sp.platen_material},
-                                       r_min, sp.density)
-                        .time_step;
+  const double dt = specimen_time_step(sp, c.table, sp.min_radius()).time_step;
   const double height = sp.nominal_box.z;
   const double speed = loading_rate(c.settings, height).platen_speed;
   const double steps = passes * max_axial_strain * height / (2.0 * speed) / dt;

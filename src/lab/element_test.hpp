@@ -51,6 +51,11 @@ struct ElementTestConfig {
 ElementTestConfig read_element_test_keys(const std::string& path, const toml::table& root,
                                          TableReader& t, const ElementTestSettings& defaults = {});
 
+// test.max_axial_strain (default `fallback`) in (0, 0.5), and the step budget of a loading to it
+// (check_step_budget).
+double read_max_axial_strain(const ElementTestConfig& c, double fallback, int passes,
+                             TableReader& t);
+
 // ConfigError naming the loading key unless the loading to `max_axial_strain` (both ways when
 // `passes` = 2) fits in max_steps_per_run steps, estimated from the nominal box and beads.
 void check_step_budget(const ElementTestConfig& c, double max_axial_strain, int passes,

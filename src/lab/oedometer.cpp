@@ -167,10 +167,7 @@ OedometerConfig read_oedometer_config(const std::string& path, const toml::table
   c.unload_stress = t.number_or("unload_stress", Quantity::pressure, sigma3);
   if (!(c.unload_stress > 0 && c.unload_stress < c.max_axial_stress))
     t.fail("unload_stress", "expected a stress in (0, max_axial_stress)");
-  c.max_axial_strain = t.number_or("max_axial_strain", Quantity::dimensionless, c.max_axial_strain);
-  if (!(c.max_axial_strain > 0 && c.max_axial_strain < 0.5))
-    t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
-  check_step_budget(c, c.max_axial_strain, 2, t);
+  c.max_axial_strain = read_max_axial_strain(c, c.max_axial_strain, 2, t);
   t.finish();
   return c;
 }

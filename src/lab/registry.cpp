@@ -83,33 +83,39 @@ void resume_lab_test(const RunOptions& options) {
   e.resume(load_checkpoint(checkpoint, c.table), root, options);
 }
 
-ElementTestScene element_test_scene(const std::string& path, const toml::table& root) {
+namespace {
+
+// The config of an element test; ConfigError naming test.type, with `refusal` (a format with the
+// test type), for a test without a specimen.
+ElementTestConfig element_config_of(const std::string& path, const toml::table& root,
+                                    const char* refusal) {
   const LabTestEntry& e = entry_for(path, root);
   if (!e.element_config)
     throw ConfigError(
-        fmt::format("{}: test.type: grainlab params shows the constants of scenes "
-                    "and element tests (triaxial, oedometer), not of a {} test",
-                    path, e.type));
-  const ElementTestConfig c = e.element_config(path, root);
+        fmt::format("{}: test.type: {}", path, fmt::format(fmt::runtime(refusal), e.type)));
+  return e.element_config(path, root);
+}
+
+}  // namespace
+
+ElementTestScene element_test_scene(const std::string& path, const toml::table& root) {
+  const ElementTestConfig c = element_config_of(
+      path, root,
+      "grainlab params shows the constants of scenes and element tests (triaxial, oedometer), "
+      "not of a {} test");
   const SpecimenSettings& sp = c.settings.specimen;
   ElementTestScene out{c.scene, {}};
   out.scene.dt_fraction = sp.dt_fraction;
   out.scene.walls = cuboid_walls({}, sp.nominal_box, sp.lateral_material, sp.platen_material);
-  const double r_min = 0.5 * (sp.diameter - sp.diameter_tolerance);
   for (uint32_t id = 0; id < 2; ++id)
-    out.particles.add(id, sp.bead_material, r_min, sp.density, {}, {}, {}, false);
+    out.particles.add(id, sp.bead_material, sp.min_radius(), sp.density, {}, {}, {}, false);
   return out;
 }
 
 void run_prepare(const std::string& path, const RunOptions& options) {
   const toml::table root = parse_toml_file(path);
-  const LabTestEntry& e = entry_for(path, root);
-  if (!e.element_config)
-    throw ConfigError(
-        fmt::format("{}: test.type: a {} test has no specimen to prepare (element "
-                    "tests: triaxial, oedometer)",
-                    path, e.type));
-  const ElementTestConfig c = e.element_config(path, root);
+  const ElementTestConfig c = element_config_of(
+      path, root, "a {} test has no specimen to prepare (element tests: triaxial, oedometer)");
   prepare_output_dir(options.out_dir, options.overwrite);
   install_interrupt_handler();
   const auto start = std::chrono::steady_clock::now();

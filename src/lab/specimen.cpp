@@ -88,6 +88,13 @@ void set_compaction_contacts(PairTable& table, const PairTable& original, const 
 
 }  // namespace
 
+MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
+                                    double min_radius) {
+  return material_time_step(s.dt_fraction, table, s.bead_material,
+                            {s.bead_material, s.lateral_material, s.platen_material}, min_radius,
+                            s.density);
+}
+
 HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
                          const std::function<bool(const HoldState&)>& on_check) {
   const double t_end = sim.time() + c.max_time;
@@ -127,7 +134,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   out.inserted_solid_fraction =
       solid_fraction(particles, out.inserted_box.x * out.inserted_box.y * out.inserted_box.z);
 
-  const double r_min = 0.5 * (s.diameter - s.diameter_tolerance);
+  const double r_min = s.min_radius();
   const PairParams& glass = original(s.bead_material, s.bead_material);
   // Steering: compact frictionless until the target solid fraction is reached, then switch the
   // measured friction on so the packing locks in; without a target, the particles' own friction.
@@ -138,9 +145,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   // The step must be stable for the compaction contacts (more damped) and the measured ones
   // (restored at the end), by the one rule of contact/stability.hpp.
   SimulationSettings settings;
-  const MaterialTimeStep step = material_time_step(
-      s.dt_fraction, original, s.bead_material,
-      {s.bead_material, s.lateral_material, s.platen_material}, r_min, s.density);
+  const MaterialTimeStep step = specimen_time_step(s, original, r_min);
   PairTable measured_friction = table;
   set_compaction_contacts(measured_friction, original, s, -1.0, s.compaction_restitution);
   settings.time_step = std::min(

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "contact/pair_table.hpp"
+#include "contact/stability.hpp"
 #include "core/particles.hpp"
 #include "core/simulation.hpp"
 
@@ -38,7 +39,14 @@ struct SpecimenSettings {
   double unbalanced_tolerance = 1e-4;   // and mean unbalanced / mean contact force below this
   double max_time = 0.5;                // s simulated at most
   uint64_t seed = 1;
+
+  double min_radius() const { return 0.5 * (diameter - diameter_tolerance); }  // m, smallest bead
 };
+
+// The time step of a test on this kind of specimen (contact/stability.hpp, material_time_step):
+// the beads with each other, with the lateral walls and with the platens, at `min_radius`.
+MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
+                                    double min_radius);
 
 struct Specimen {
   ParticleStore particles;

@@ -82,10 +82,7 @@ void shear_and_finish(ElementRun& run, const ShearProgress& start, const Triaxia
 TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& root) {
   TableReader t = test_table_reader(path, root);
   TriaxialConfig c{read_element_test_keys(path, root, t)};
-  c.max_axial_strain = t.number_or("max_axial_strain", Quantity::dimensionless, c.max_axial_strain);
-  if (!(c.max_axial_strain > 0 && c.max_axial_strain < 0.5))
-    t.fail("max_axial_strain", "expected a strain in (0, 0.5)");
-  check_step_budget(c, c.max_axial_strain, 1, t);
+  c.max_axial_strain = read_max_axial_strain(c, c.max_axial_strain, 1, t);
   t.finish();
   return c;
 }

@@ -317,16 +317,23 @@ def sliding_length_with_covering_slider():
     expect_bad_sliding('slider_covers_bed = true\nslider_length = "16 mm"', "test.slider_length", "derived")
 
 
+def small_sliding_bed(layers, slide_distance):
+    """The sliding-friction example on a 20 x 10 mm bed of `layers` layers, pulled `slide_distance`."""
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    for old, new in (('bed_length = "32 mm"', 'bed_length = "20 mm"'), ('bed_width = "16 mm"', 'bed_width = "10 mm"'),
+                     ("layers = 4", f"layers = {layers}"),
+                     ('slide_distance = "8 mm"', f'slide_distance = "{slide_distance}"')):
+        assert old in text, old
+        text = text.replace(old, new)
+    return text
+
+
 def sliding_friction_on_beads():
     """The example's interface shear test on a smaller bed (150 beads: 3 layers, 20 x 10 mm, 4 mm
     pulls): over four loads F is proportional to P (R^2 > 0.95, the issue's requirement) and the
     apparent friction is finite and below the input mu_s = 0.21, because beads under the slider
     roll instead of sliding (measured 0.163, R^2 0.989; the example's 512-bead bed gives 0.183)."""
-    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
-    for old, new in (('bed_length = "32 mm"', 'bed_length = "20 mm"'), ('bed_width = "16 mm"', 'bed_width = "10 mm"'),
-                     ("layers = 4", "layers = 3"), ('slide_distance = "8 mm"', 'slide_distance = "4 mm"')):
-        assert old in text, old
-        text = text.replace(old, new)
+    text = small_sliding_bed(3, "4 mm")
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "s.toml")
         open(path, "w").write(text)
@@ -345,11 +352,7 @@ def sliding_friction_on_beads():
 def sliding_unreliable_fit_fails():
     """One layer and a 0.5 mm pull never reach steady sliding (it once reported mu = -0.062 with
     R^2 = -17.4 and exit 0): the results are written with a warning and the run exits with 1."""
-    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
-    for old, new in (('bed_length = "32 mm"', 'bed_length = "20 mm"'), ('bed_width = "16 mm"', 'bed_width = "10 mm"'),
-                     ("layers = 4", "layers = 1"), ('slide_distance = "8 mm"', 'slide_distance = "0.5 mm"')):
-        assert old in text, old
-        text = text.replace(old, new)
+    text = small_sliding_bed(1, "0.5 mm")
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "s.toml")
         open(path, "w").write(text)

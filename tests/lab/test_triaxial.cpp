@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "measure/boundary.hpp"
 #include "lab/specimen.hpp"
+#include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
 
 using namespace grainlab;
