@@ -15,7 +15,7 @@ Command add_prepare_command(CLI::App& app) {
   auto config = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("prepare",
                                      "prepare (compress) the specimen of an element-test config "
-                                     "(triaxial, oedometer) and save it");
+                                     "(triaxial, oedometer, plane_strain) and save it");
   sub->add_option("config", *config, "element-test configuration (TOML)")->required();
   sub->add_option("--out", options->out_dir, "output directory (specimen.csv, specimen.json)")
       ->required();

@@ -23,9 +23,9 @@ Command add_run_command(CLI::App& app) {
       "scene or test configuration (TOML; docs/scene-schema.md, docs/lab-tests.md)");
   CLI::Option* out_option =
       sub->add_option("--out", options->out_dir, "output directory (created; must be empty)");
-  sub->add_option(
-         "--resume", *resume,
-         "continue an interrupted element test (triaxial, oedometer) from DIR/checkpoint.bin")
+  sub->add_option("--resume", *resume,
+                  "continue an interrupted element test (triaxial, oedometer, plane_strain) from "
+                  "DIR/checkpoint.bin")
       ->excludes(config_option)
       ->excludes(out_option);
   sub->add_flag("--overwrite", options->overwrite,

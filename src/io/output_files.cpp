@@ -117,7 +117,8 @@ void vector_array(std::string& out, const char* name, const std::vector<size_t>&
 }
 }  // namespace
 
-std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count) {
+std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count,
+                          const std::vector<double>* shear_strain) {
   const std::vector<size_t> order = indices_by_id(p);
   const size_t n = p.size();
   std::string out =
@@ -138,6 +139,11 @@ std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contac
   if (contact_count) {
     out += "        <DataArray type=\"Int32\" Name=\"contacts\" format=\"ascii\">\n";
     for (size_t i : order) out += fmt::format("{}\n", (*contact_count)[i]);
+    out += "        </DataArray>\n";
+  }
+  if (shear_strain) {
+    out += "        <DataArray type=\"Float64\" Name=\"shear_strain\" format=\"ascii\">\n";
+    for (size_t i : order) out += fmt::format("{:.6g}\n", (*shear_strain)[i]);
     out += "        </DataArray>\n";
   }
   vector_array(out, "velocity", order, [&](size_t i) { return p.velocity[i]; });

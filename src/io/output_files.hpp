@@ -55,8 +55,10 @@ std::vector<size_t> indices_by_id(const ParticleStore& p);
 
 // One VTK UnstructuredGrid (.vtu) of the particles as points, with radius, velocity, angular
 // velocity, displacement since the start, accumulated rotation, id and material.
-// `contact_count` (per particle index, optional) adds a "contacts" array.
-std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count = nullptr);
+// `contact_count` (per particle index, optional) adds a "contacts" array, `shear_strain` a
+// "shear_strain" array (the local in-plane shear strain, measure/local_strain.hpp).
+std::string particles_vtu(const ParticleStore& p, const std::vector<int>* contact_count = nullptr,
+                          const std::vector<double>* shear_strain = nullptr);
 
 // A .vtu of the walls: planes and rectangles as quads, cylinders as a ring of quads, sized to
 // `extent` (m) where the wall itself is unbounded.

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "calibrate/least_squares.hpp"
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "grainlab/version.hpp"
@@ -70,7 +71,11 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
                needed));
   p.confining_stress = t.number_or("confining_stress", Quantity::pressure, p.confining_stress);
   if (!(p.confining_stress > 0)) t.fail("confining_stress", "expected a confining stress > 0 Pa");
-  if (auto phi = t.optional_number("target_solid_fraction", Quantity::dimensionless)) {
+  const toml::node* target =
+      t.has("target_solid_fraction") ? t.node("target_solid_fraction") : nullptr;
+  if (target && target->value<std::string>() == "none") {
+    p.target_solid_fraction.reset();  // compact with the beads' own friction, no target
+  } else if (auto phi = t.optional_number("target_solid_fraction", Quantity::dimensionless)) {
     if (!(*phi > 0.45 && *phi < 0.66))
       t.fail("target_solid_fraction", "expected a solid fraction in (0.45, 0.66)");
     p.target_solid_fraction = *phi;
@@ -168,6 +173,33 @@ std::vector<std::vector<double>> curve_values(const std::string& rows) {
   return out;
 }
 
+double curve_slope(const std::vector<std::vector<double>>& rows, int x, int y,
+                   const std::function<bool(const std::vector<double>&)>& use) {
+  std::vector<std::vector<double>> design;
+  std::vector<double> values;
+  for (const auto& r : rows)
+    if (use(r)) design.push_back({1.0, r[x]}), values.push_back(r[y]);
+  return design.size() >= 3 ? calibrate::least_squares(design, values).coefficients[1] : NAN;
+}
+
+void add_vtk_snapshot(ElementRun& run, const std::string& dir, long step,
+                      const std::string& particles_vtu, const std::string& walls_vtu) {
+  std::filesystem::create_directories(dir + "/vtk");
+  const std::string particles = fmt::format("vtk/particles_{:08d}.vtu", step);
+  const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", step);
+  write_file_atomically(dir + "/" + particles, particles_vtu);
+  write_file_atomically(dir + "/" + walls, walls_vtu);
+  const double t = run.sim.time();
+  run.vtk_index +=
+      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", t, particles);
+  run.vtk_index +=
+      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"1\" file=\"{}\"/>\n", t, walls);
+  write_file_atomically(
+      dir + "/particles.pvd",
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
+          run.vtk_index + "  </Collection>\n</VTKFile>\n");
+}
+
 double read_max_axial_strain(const ElementTestConfig& c, double fallback, int passes,
                              TableReader& t) {
   const double strain = t.number_or("max_axial_strain", Quantity::dimensionless, fallback);
@@ -226,31 +258,36 @@ std::string read_text(const std::string& path) {
 
 ElementRun start_element_test(const std::string& type, const std::string& path,
                               const toml::table& root, const ElementTestConfig& c,
-                              const std::string& out_dir, Progress& progress) {
+                              const std::string& out_dir, Progress& progress,
+                              const SpecimenMount& mount) {
   const ElementTestSettings& s = c.settings;
   const SpecimenSettings& sp = s.specimen;
   const auto wall_start = std::chrono::steady_clock::now();
   const Specimen specimen = obtain_specimen(c, progress);
   if (!s.specimen_file) save_specimen(out_dir + "/specimen.csv", specimen);
   const ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);
-  ElementRun run{
-      Simulation(specimen.particles,
-                 cuboid_walls(specimen.low, specimen.high, sp.lateral_material, sp.platen_material),
-                 c.table, step.settings),
-      type, path, read_text(path)};
+  ElementRun run{Simulation(specimen.particles,
+                            mount.walls ? mount.walls(specimen)
+                                        : cuboid_walls(specimen.low, specimen.high,
+                                                       sp.lateral_material, sp.platen_material),
+                            c.table, step.settings),
+                 type, path, read_text(path)};
   // A specimen is stored without contact history (tangential springs), so it is first brought
   // back to equilibrium under the confining stress before the loading starts.
-  const HoldState held = hold_isotropic(
-      run.sim,
-      HoldCriteria{sp.confining_stress, sp.max_strain_rate, sp.stress_tolerance, 1e-3, 0.02},
-      [&](const HoldState& state) {
-        if (interrupt_requested())
-          throw Interrupted("interrupted before the loading began: nothing to resume");
-        progress.update(
-            0.0, fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
-                             100 * state.max_stress_error, state.unbalanced));
-        return true;
-      });
+  const auto on_check = [&](const HoldState& state) {
+    if (interrupt_requested())
+      throw Interrupted("interrupted before the loading began: nothing to resume");
+    progress.update(0.0,
+                    fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
+                                100 * state.max_stress_error, state.unbalanced));
+    return true;
+  };
+  const HoldState held = mount.equilibrate
+                             ? mount.equilibrate(run.sim, on_check)
+                             : hold_isotropic(run.sim,
+                                              HoldCriteria{sp.confining_stress, sp.max_strain_rate,
+                                                           sp.stress_tolerance, 1e-3, 0.02},
+                                              on_check);
   nlohmann::json j = summary_header(path, &root);
   j["specimen"] = specimen_json(specimen);
   j["specimen"]["source"] =
@@ -260,7 +297,8 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   j["dt_fraction"] = dt / step.collision_duration;
   j["collision_duration_s"] = step.collision_duration;
   j["time_step_limited_by"] = step.limited_by;
-  j["initial_solid_fraction"] = solid_fraction(run.sim.particles(), box_volume(run.sim.walls()));
+  j["initial_solid_fraction"] = solid_fraction(
+      run.sim.particles(), mount.volume ? mount.volume(run.sim) : box_volume(run.sim.walls()));
   j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced},
                            {"max_wall_stress_error", held.max_stress_error},
                            {"reached", held.reached}};
@@ -272,12 +310,12 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
 
 ElementRun begin_element_test(const std::string& type, const std::string& path,
                               const toml::table& root, const ElementTestConfig& c,
-                              const RunOptions& options) {
+                              const RunOptions& options, const SpecimenMount& mount) {
   check_specimen_file(path, c.settings);
   prepare_output_dir(options.out_dir, options.overwrite);
   install_interrupt_handler();
   Progress preparing("grainlab " + type, options.quiet);
-  return start_element_test(type, path, root, c, options.out_dir, preparing);
+  return start_element_test(type, path, root, c, options.out_dir, preparing, mount);
 }
 
 void load_to_end(ElementRun& run, LoadingStage& stage, double checkpoint_interval_s,

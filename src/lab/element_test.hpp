@@ -1,6 +1,7 @@
-// The machinery every element test on a cuboid specimen shares (triaxial, oedometer; the plane
-// strain test next), so that a test is one file of what is its own: which axis is held how
-// (control/box_controller.hpp), when it records and what, and its summary.
+// The machinery every element test on a cuboid specimen shares (triaxial, oedometer, plane
+// strain), so that a test is one file of what is its own: which axis is held how
+// (control/box_controller.hpp, control/plane_strain_box.hpp), when it records and what, and its
+// summary.
 //
 //   ElementTestSettings     the [test] keys every element test reads (specimen, loading rate,
 //                           outputs, checkpoints)  -> read_element_test_keys
@@ -14,6 +15,7 @@
 
 #include <toml++/toml.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -99,17 +101,30 @@ struct ElementRun {
   double wall_time_before = 0.0;  // s spent in earlier sessions of this run
 };
 
+// How a test holds its prepared specimen: the walls its Simulation is built with, the
+// re-equilibration under the confining stress before the loading, and the specimen's volume.
+// The default (an empty mount): the six walls of the preparation box, held isotropically by servo
+// (hold_isotropic). The plane strain test replaces the lateral walls by a membrane.
+struct SpecimenMount {
+  std::function<std::vector<Wall>(const Specimen&)> walls;
+  // Brings the simulation to rest at the confining stress; `on_check` as in hold_isotropic.
+  std::function<HoldState(Simulation&, const std::function<bool(const HoldState&)>& on_check)>
+      equilibrate;
+  std::function<double(const Simulation&)> volume;
+};
+
 // Specimen obtained, simulation built, re-equilibrated under the confining stress (a specimen
 // file carries no contact history); run_info holds the specimen, time step and preparation.
 ElementRun start_element_test(const std::string& type, const std::string& config_path,
                               const toml::table& root, const ElementTestConfig& c,
-                              const std::string& out_dir, Progress& progress);
+                              const std::string& out_dir, Progress& progress,
+                              const SpecimenMount& mount = {});
 
 // The first steps of every element test's run: the specimen file checked, the output directory
 // prepared, Ctrl-C handled, then start_element_test.
 ElementRun begin_element_test(const std::string& type, const std::string& config_path,
                               const toml::table& root, const ElementTestConfig& c,
-                              const RunOptions& options);
+                              const RunOptions& options, const SpecimenMount& mount = {});
 
 // A stage's own state (plain values) into a checkpoint and back.
 template <class T>
@@ -156,5 +171,23 @@ ElementRun load_checkpoint(const std::string& path, PairTable table);
 
 // The rows of a curve.csv text as numbers (for summaries computed from the curve).
 std::vector<std::vector<double>> curve_values(const std::string& rows);
+
+// Least-squares slope of column y against column x over the rows where `use` holds (NaN below
+// 3 rows).
+double curve_slope(const std::vector<std::vector<double>>& rows, int x, int y,
+                   const std::function<bool(const std::vector<double>&)>& use);
+
+// Whether the next output of a series every `interval` of axial strain is due (the strain reached
+// next x interval, or it is the loading's last step); advances `next` when it is.
+inline bool output_due(double axial_strain, long& next, double interval, bool last_step) {
+  if (!(axial_strain >= next * interval - 1e-12 || last_step)) return false;
+  ++next;
+  return true;
+}
+
+// A ParaView snapshot in DIR/vtk: the particles' and the walls' .vtu texts at `step`, added to the
+// run's DIR/particles.pvd index.
+void add_vtk_snapshot(ElementRun& run, const std::string& dir, long step,
+                      const std::string& particles_vtu, const std::string& walls_vtu);
 
 }  // namespace grainlab

@@ -2,8 +2,9 @@
 // `test.type`; each test is one file in src/lab/ plus one row in the registry (registry.cpp).
 // A test reads the sections of the config it needs, builds its specimen, walls and controllers,
 // runs the core, measures like the laboratory does and writes its results (always summary.json)
-// into the output directory. Element tests on a prepared specimen (triaxial, oedometer) share
-// lab/element_test.hpp: preparation, the time step, checkpoints and resume, progress.
+// into the output directory. Element tests on a prepared specimen (triaxial, oedometer,
+// plane_strain) share lab/element_test.hpp: preparation, the time step, checkpoints and resume,
+// progress.
 #pragma once
 
 #include <toml++/toml.h>

@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include "calibrate/least_squares.hpp"
 #include "control/box_controller.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
@@ -98,16 +97,6 @@ class Compression : public LoadingStage {
   ScopedListener attached_;
 };
 
-// Least-squares slope of y against x over the rows where `use` holds.
-template <class Use>
-double slope(const std::vector<std::vector<double>>& rows, int x, int y, Use use) {
-  std::vector<std::vector<double>> design;
-  std::vector<double> values;
-  for (const auto& r : rows)
-    if (use(r)) design.push_back({1.0, r[x]}), values.push_back(r[y]);
-  return design.size() >= 3 ? calibrate::least_squares(design, values).coefficients[1] : NAN;
-}
-
 void finish(const ElementRun& run, const std::string& dir, bool quiet) {
   const std::vector<std::vector<double>> rows = curve_values(run.curve_rows);
   enum { phase = 1, strain = 2, sv = 5, sh = 6, k0w = 11, k0p = 12 };
@@ -123,11 +112,11 @@ void finish(const ElementRun& run, const std::string& dir, bool quiet) {
   j["K0_particles_at_max_stress"] = rows[top][k0p];
   j["K0_walls_vs_particles"] = rows[top][k0w] / rows[top][k0p] - 1.0;
   j["K0_incremental_on_loading"] =
-      slope(rows, sv, sh, [&](const auto& r) { return r[phase] == 1 && r[sv] >= upper; });
+      curve_slope(rows, sv, sh, [&](const auto& r) { return r[phase] == 1 && r[sv] >= upper; });
   j["constrained_modulus_loading_Pa"] =
-      slope(rows, strain, sv, [&](const auto& r) { return r[phase] == 1 && r[sv] >= upper; });
-  j["constrained_modulus_unloading_Pa"] =
-      slope(rows, strain, sv, [&](const auto& r) { return r[phase] == -1 && r[sv] >= upper; });
+      curve_slope(rows, strain, sv, [&](const auto& r) { return r[phase] == 1 && r[sv] >= upper; });
+  j["constrained_modulus_unloading_Pa"] = curve_slope(
+      rows, strain, sv, [&](const auto& r) { return r[phase] == -1 && r[sv] >= upper; });
   j["residual_axial_strain"] = rows.back()[strain];
   j["lateral_strain_max"] = std::max(std::abs(rows.back()[3]), std::abs(rows.back()[4]));
   j["steps"] = run.sim.step_count();

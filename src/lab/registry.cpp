@@ -11,6 +11,7 @@
 #include "lab/interrupt.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/oedometer.hpp"
+#include "lab/plane_strain.hpp"
 #include "lab/sliding_friction.hpp"
 #include "lab/triaxial.hpp"
 
@@ -34,6 +35,11 @@ const std::vector<LabTestEntry>& lab_tests() {
       {"oedometer",
        "one-dimensional compression between fixed lateral walls: constrained modulus and K0",
        run_oedometer, element_config<OedometerConfig, read_oedometer_config>, resume_oedometer},
+      {"plane_strain",
+       "plane strain test: lateral faces held by a flexible membrane, fixed front and back walls, "
+       "and a map of the shear band",
+       run_plane_strain, element_config<PlaneStrainConfig, read_plane_strain_config>,
+       resume_plane_strain},
   };
   return table;
 }
@@ -99,10 +105,11 @@ ElementTestConfig element_config_of(const std::string& path, const toml::table& 
 }  // namespace
 
 ElementTestScene element_test_scene(const std::string& path, const toml::table& root) {
-  const ElementTestConfig c = element_config_of(
-      path, root,
-      "grainlab params shows the constants of scenes and element tests (triaxial, oedometer), "
-      "not of a {} test");
+  const ElementTestConfig c =
+      element_config_of(path, root,
+                        "grainlab params shows the constants of scenes and element tests "
+                        "(triaxial, oedometer, plane_strain), "
+                        "not of a {} test");
   const SpecimenSettings& sp = c.settings.specimen;
   ElementTestScene out{c.scene, {}};
   out.scene.dt_fraction = sp.dt_fraction;
@@ -115,7 +122,8 @@ ElementTestScene element_test_scene(const std::string& path, const toml::table& 
 void run_prepare(const std::string& path, const RunOptions& options) {
   const toml::table root = parse_toml_file(path);
   const ElementTestConfig c = element_config_of(
-      path, root, "a {} test has no specimen to prepare (element tests: triaxial, oedometer)");
+      path, root,
+      "a {} test has no specimen to prepare (element tests: triaxial, oedometer, plane_strain)");
   prepare_output_dir(options.out_dir, options.overwrite);
   install_interrupt_handler();
   const auto start = std::chrono::steady_clock::now();

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
 
 #include "io/output_files.hpp"
 #include "measure/boundary.hpp"
@@ -65,18 +64,16 @@ void TriaxialShear::observe(ElementRun& run, Progress& progress) {
   const Vec3 size = box_size(run.sim.walls());
   const double axial_strain = (p.size0.z - size.z) / p.size0.z;
   axial_strain_ = axial_strain;
-  if (axial_strain >= p.next_output * p.output_strain_interval - 1e-12 || p.step == p.total_steps) {
-    ++p.next_output;
+  const bool last = p.step == p.total_steps;
+  if (output_due(axial_strain, p.next_output, p.output_strain_interval, last)) {
     record(run);
     progress.update(static_cast<double>(p.step) / p.total_steps,
                     fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
                                 100 * axial_strain, 1e-3 * p.last_axial));
   }
   if (p.vtk_strain_interval > 0 &&
-      (axial_strain >= p.next_vtk * p.vtk_strain_interval - 1e-12 || p.step == p.total_steps)) {
-    ++p.next_vtk;
+      output_due(axial_strain, p.next_vtk, p.vtk_strain_interval, last))
     snapshot(run);
-  }
 }
 
 // One row of curve.csv (stresses averaged over the interval since the last row; at the start
@@ -129,22 +126,10 @@ void TriaxialShear::record(ElementRun& run) {
 // A ParaView snapshot: particles with velocity, displacement since the start, rotation and
 // contact count; the walls; the .pvd index.
 void TriaxialShear::snapshot(ElementRun& run) {
-  const std::string& dir = dir_;
   const Simulation& sim = run.sim;
-  std::filesystem::create_directories(dir + "/vtk");
-  const std::string name = fmt::format("vtk/particles_{:08d}.vtu", p_.step);
   const std::vector<int> contacts = contacts_per_particle(sim);
-  write_file_atomically(dir + "/" + name, particles_vtu(sim.particles(), &contacts));
-  const std::string walls = fmt::format("vtk/walls_{:08d}.vtu", p_.step);
-  write_file_atomically(dir + "/" + walls, walls_vtu(sim.walls(), 2.0 * p_.size0.z));
-  run.vtk_index +=
-      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", sim.time(), name);
-  run.vtk_index +=
-      fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"1\" file=\"{}\"/>\n", sim.time(), walls);
-  write_file_atomically(
-      dir + "/particles.pvd",
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n" +
-          run.vtk_index + "  </Collection>\n</VTKFile>\n");
+  add_vtk_snapshot(run, dir_, p_.step, particles_vtu(sim.particles(), &contacts),
+                   walls_vtu(sim.walls(), 2.0 * p_.size0.z));
 }
 
 }  // namespace grainlab

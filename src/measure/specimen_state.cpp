@@ -10,6 +10,13 @@ Tensor3 symmetric_over_volume(const Tensor3& s, double volume) {
     for (int b = 0; b < 3; ++b) out[a][b] = 0.5 * (s[a][b] + s[b][a]) / volume;
   return out;
 }
+// An external force (a membrane's pressure) is a load on the particle's surface where the pushing
+// body touches it: the point opposite the force's direction, -r F/|F| from the centre. (Zero for
+// a particle without one.)
+Vec3 external_load_arm(const ParticleStore& p, size_t i) {
+  const double f = norm(p.external_force[i]);
+  return f > 0.0 ? (-p.radius[i] / f) * p.external_force[i] : Vec3{};
+}
 }  // namespace
 
 Tensor3 love_weber_stress(const Simulation& sim, double volume) {
@@ -34,6 +41,11 @@ Tensor3 love_weber_stress(const Simulation& sim, double volume) {
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) s[a][b] += f[a] * l[b];
     }
+    if (const Vec3 l = external_load_arm(p, i); norm2(l) > 0.0) {
+      const Vec3 f = -1.0 * p.external_force[i];  // on the membrane
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) s[a][b] += f[a] * l[b];
+    }
   }
   // Compressive positive: a contact pushing the bodies apart (f along l) is compression.
   return symmetric_over_volume(s, volume);
@@ -49,6 +61,13 @@ Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume
       const Vec3 f = -1.0 * wc.force_on_particle[e];  // on the wall
       const WallGap g = wall_gap(sim.walls()[wc.wall[e]], p.position[i]);
       const Vec3 x = p.position[i] + g.gap * g.normal - centre;  // contact point from x_0
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) s[a][b] += f[a] * x[b];
+    }
+  for (size_t i = 0; i < p.size(); ++i)
+    if (const Vec3 l = external_load_arm(p, i); norm2(l) > 0.0) {
+      const Vec3 f = -1.0 * p.external_force[i];
+      const Vec3 x = p.position[i] + l - centre;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) s[a][b] += f[a] * x[b];
     }

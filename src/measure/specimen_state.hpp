@@ -7,7 +7,9 @@
 //   ]
 // with f the force on the second body / on the wall, l the branch vector from the first centre to
 // the second. In static equilibrium it equals the boundary (wall) stress; the agreement is a
-// check of equilibrium and of the volume.
+// check of equilibrium and of the volume. An external force on a particle (a flexible membrane's
+// pressure) counts as a boundary contact at the particle's surface point opposite the force's
+// direction, where the membrane touches it: its lever is -r F/|F|.
 #pragma once
 
 #include <array>
@@ -23,9 +25,9 @@ Tensor3 love_weber_stress(const Simulation& sim, double volume);
 
 // Average stress from the boundary alone (the average-stress theorem):
 //   sigma_ij = (1/V) sum over wall contacts f_i (x_c - x_0)_j,
-// f the force on the wall, x_c the contact point, x_0 = `centre`; symmetrised, compressive
-// positive. Unlike the platen stress F/A it includes the moment of the shear forces the walls
-// carry (friction on the lateral walls takes part of the axial load). It differs from the
+// f the force on the wall (or the membrane), x_c the contact point, x_0 = `centre`; symmetrised,
+// compressive positive. Unlike the platen stress F/A it includes the moment of the shear forces the
+// walls carry (friction on the lateral walls takes part of the axial load). It differs from the
 // Love-Weber average only by sum over particles of (net force) (x_p - x_0): the inertia of the
 // particles, small once quasi-static.
 Tensor3 boundary_stress(const Simulation& sim, const Vec3& centre, double volume);
