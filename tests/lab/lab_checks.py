@@ -502,11 +502,28 @@ def plane_strain_small_specimen_shear():
     (Love-Weber) agrees with the boundary's (membrane + fixed walls) within 2 % on every row past
     0.5 % axial strain; the strain through the thickness is exactly zero; no bead escapes; the
     membrane's applied stress is the confining stress; the curve rises to a peak above the
-    confining stress and falls after it; the band is found and drawn."""
+    confining stress and falls after it; the band is found and drawn; the VTK snapshots carry the
+    local shear strain."""
+    import re
+    import vtk  # Debian python3-vtk9
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "o")
-        r = run("run", os.path.join(SRC, "examples/plane_strain/small.toml"), "--out", out, "--quiet")
+        path = os.path.join(d, "ps.toml")
+        open(path, "w").write(PLANE_STRAIN.replace("output_strain_interval = 0.002",
+                                                   "output_strain_interval = 0.002\nvtk = true\nvtk_strain_interval = 0.05"))
+        r = run("run", path, "--out", out, "--quiet")
         assert r.returncode == 0, r.stderr
+        # Snapshots at 0, 5 and 10 %: the particles carry the local shear strain, finite for all
+        # 2,000 beads and grown by the end.
+        files = re.findall(r'file="([^"]+)"', open(os.path.join(out, "particles.pvd")).read())
+        assert len(files) == 2 * 3, files
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, files[-2]))
+        reader.Update()
+        shear = reader.GetOutput().GetPointData().GetArray("shear_strain")
+        values = [shear.GetValue(i) for i in range(shear.GetNumberOfTuples())]
+        assert len(values) == 2000 and all(v == v for v in values), len(values)
+        assert sum(values) / len(values) > 0.05, sum(values) / len(values)
         rows = read_curve(os.path.join(out, "curve.csv"))
         late = [x for x in rows if x["axial_strain"] > 0.005]
         assert late
