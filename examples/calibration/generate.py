@@ -4,7 +4,7 @@
 The files imitate the measurements of Tang, Song, Dong & Song (2019), Materials 12, 3170, so
 that `grainlab calibrate` can be tried end to end. True values are the published ones:
 
-* throws.csv  - flat-throw test (DESIGN.md sec. 4): 20 throws per plate material, launch height
+* throws.csv  - flat-throw test (docs/calibration.md): 20 throws per plate material, launch height
   H about 300 mm (measured per throw to 1 mm), true restitution per Table 3 (glass 0.926,
   glass plate with rubber membrane 0.580, porous stone 0.730), throw-to-throw scatter of e
   (sd 0.012 / 0.030 / 0.025) and a 0.5 mm reading error on the rebound height h.
