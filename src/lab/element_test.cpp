@@ -4,11 +4,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <string_view>
 
 #include "calibrate/least_squares.hpp"
 #include "contact/stability.hpp"
@@ -368,89 +366,6 @@ void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
   std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
   std::error_code ec;
   std::filesystem::remove(dir + "/checkpoint.bin", ec);
-}
-
-namespace {
-
-constexpr uint64_t checkpoint_magic = 0x67726e6c656c7432;  // "grnlelt2"
-
-// FNV-1a over the checkpoint's bytes, stored at its end: a damaged file is refused instead of
-// resuming to a different result.
-uint64_t checksum(std::string_view bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
-  return h;
-}
-
-// The checkpoint without its checksum, after verifying it.
-std::string verified(std::string bytes, const std::string& path) {
-  uint64_t stored = 0;
-  if (bytes.size() < sizeof stored)
-    throw ConfigError(fmt::format("{}: damaged checkpoint (truncated)", path));
-  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
-  bytes.resize(bytes.size() - sizeof stored);
-  if (checksum(bytes) != stored)
-    throw ConfigError(fmt::format(
-        "{}: damaged checkpoint (checksum mismatch): it cannot be resumed; rerun the test", path));
-  return bytes;
-}
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
-
-void save_checkpoint(const ElementRun& run, const std::string& path) {
-  StateWriter out;
-  out.value(checkpoint_magic);
-  out.text(run.type);
-  out.text(run.config_path);
-  out.text(run.config_text);
-  out.text(run.run_info);
-  out.text(run.curve_rows);
-  out.text(run.vtk_index);
-  out.text(run.test_state);
-  out.value(run.wall_time_before);
-  run.sim.save_state(out);
-  out.value(checksum(out.bytes()));
-  write_file_atomically(path, out.bytes());
-}
-
-void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
-                     std::string& config_text) {
-  StateReader in(verified(read_all(path), path));
-  try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab element-test checkpoint");
-    type = in.text();
-    config_path = in.text();
-    config_text = in.text();
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: {}", path, e.what()));
-  }
-}
-
-ElementRun load_checkpoint(const std::string& path, PairTable table) {
-  StateReader in(verified(read_all(path), path));
-  try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab element-test checkpoint");
-    std::string type = in.text(), config_path = in.text(), config_text = in.text();
-    std::string info = in.text(), rows = in.text(), vtk = in.text(), state = in.text();
-    const double wall_time_before = in.value<double>();
-    Simulation sim(in, std::move(table));
-    if (!in.at_end()) throw std::runtime_error("trailing data");
-    return ElementRun{std::move(sim),         std::move(type),  std::move(config_path),
-                      std::move(config_text), std::move(info),  std::move(rows),
-                      std::move(vtk),         std::move(state), wall_time_before};
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
-  }
 }
 
 }  // namespace grainlab

@@ -26,6 +26,13 @@ constexpr double lab_peak_axial_stress = 276.83e3, lab_axial_strain_at_peak = 0.
 constexpr double published_dem_peak_axial_stress = 313e3;
 constexpr double degrees = 180.0 / M_PI;
 
+// The plane strain box of the specimen now, its lateral faces where a membrane finds them.
+PlaneStrainBox located_box(const Simulation& sim, const SpecimenSettings& sp) {
+  Membrane membrane(plane_strain_membrane(sp.confining_stress, sp.diameter));
+  membrane.locate(sim);
+  return plane_strain_box(sim, membrane);
+}
+
 }  // namespace
 
 // The lateral faces closed by the membrane at the confining stress, front/back walls and platens
@@ -72,11 +79,7 @@ SpecimenMount plane_strain_mount(const SpecimenSettings& sp) {
     membrane.release(sim);
     return state;
   };
-  m.volume = [sp](const Simulation& sim) {
-    Membrane membrane(plane_strain_membrane(sp.confining_stress, sp.diameter));
-    membrane.locate(sim);
-    return plane_strain_box(sim, membrane).volume();
-  };
+  m.volume = [sp](const Simulation& sim) { return located_box(sim, sp).volume(); };
   return m;
 }
 
@@ -225,11 +228,7 @@ void run_plane_strain(const std::string& path, const toml::table& root, const Ru
   ElementRun run =
       begin_element_test("plane_strain", path, root, c, options, plane_strain_mount(sp));
   PlaneStrainProgress p;
-  {
-    Membrane membrane(plane_strain_membrane(sp.confining_stress, sp.diameter));
-    membrane.locate(run.sim);
-    p.size0 = plane_strain_box(run.sim, membrane).size();
-  }
+  p.size0 = located_box(run.sim, sp).size();
   const LoadingRate rate = loading_rate(s, p.size0.z);
   p.platen_speed = rate.platen_speed;
   p.strain_rate = rate.strain_rate;

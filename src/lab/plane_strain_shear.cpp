@@ -67,19 +67,23 @@ std::string PlaneStrainShear::position() const {
   return fmt::format("axial strain {:.2f} %", 100 * axial_strain_);
 }
 
-void PlaneStrainShear::after_step(ElementRun& run) {
-  const Simulation& sim = run.sim;
+// Adds the current walls' and membrane's stresses (and, with `specimen`, the particles' and the
+// boundary's average stress: a pass over all contacts) to the sums of the output interval.
+void PlaneStrainShear::add_sample(const Simulation& sim, bool specimen) {
   const PlaneStrainBox box = plane_strain_box(sim, membrane_);
   for (int k = 0; k < 4; ++k) p_.wall_sum[k] += plane_strain_wall_stress(sim, box, k);
   // The membrane's applied stress: the forces along x it set this step over the face area.
   for (int side = 0; side < 2; ++side) p_.applied_sum[side] += membrane_.applied_stress(sim, side);
   ++p_.wall_samples;
-  if (p_.step % plane_strain_sample_steps == 0) {
-    const Tensor3 s = love_weber_stress(sim, box.volume());
-    const Tensor3 b = boundary_stress(sim, box.centre(), box.volume());
-    for (int a = 0; a < 3; ++a) p_.particle_sum[a] += s[a][a], p_.boundary_sum[a] += b[a][a];
-    ++p_.particle_samples;
-  }
+  if (!specimen) return;
+  const Tensor3 s = love_weber_stress(sim, box.volume());
+  const Tensor3 b = boundary_stress(sim, box.centre(), box.volume());
+  for (int a = 0; a < 3; ++a) p_.particle_sum[a] += s[a][a], p_.boundary_sum[a] += b[a][a];
+  ++p_.particle_samples;
+}
+
+void PlaneStrainShear::after_step(ElementRun& run) {
+  add_sample(run.sim, p_.step % plane_strain_sample_steps == 0);
   ++p_.step;
 }
 
@@ -110,14 +114,8 @@ void PlaneStrainShear::record(ElementRun& run) {
   const Vec3 size = box.size();
   if (p.wall_samples == 0 || p.particle_samples == 0) {  // the first row: the state itself
     p.wall_sum = {}, p.applied_sum = {}, p.particle_sum = {}, p.boundary_sum = {};
-    for (int k = 0; k < 4; ++k) p.wall_sum[k] = plane_strain_wall_stress(sim, box, k);
-    const MembraneFaces faces = membrane_.measure(sim);
-    p.applied_sum = faces.applied_stress;
-    p.wall_samples = 1;
-    const Tensor3 s = love_weber_stress(sim, box.volume());
-    const Tensor3 b = boundary_stress(sim, box.centre(), box.volume());
-    for (int a = 0; a < 3; ++a) p.particle_sum[a] = s[a][a], p.boundary_sum[a] = b[a][a];
-    p.particle_samples = 1;
+    p.wall_samples = 0, p.particle_samples = 0;
+    add_sample(sim, true);
   }
   std::array<double, 4> w;
   for (int k = 0; k < 4; ++k) w[k] = p.wall_sum[k] / p.wall_samples;

@@ -63,6 +63,7 @@ class PlaneStrainShear : public LoadingStage {
   const Membrane& membrane() const { return membrane_; }
 
  private:
+  void add_sample(const Simulation& sim, bool specimen);
   void record(ElementRun& run);
   void snapshot(ElementRun& run);
 
