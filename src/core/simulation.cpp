@@ -41,6 +41,13 @@ void Simulation::step() {
   for (StepListener* l : listeners_) l->after_step(*this);
 }
 
+void Simulation::scale_positions(const Vec3& centre, double factor) {
+  ParticleStore& p = particles_;
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) p.position[i] = centre + factor * (p.position[i] - centre);
+}
+
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
 void Simulation::kick_and_drift() {
   const double dt = settings_.time_step, half = 0.5 * dt;

@@ -73,6 +73,10 @@ class Simulation {
     external_forces_ = true;
   }
   void clear_external_forces();
+  // Moves every particle centre toward `centre` to centre + factor (x - centre): a homogeneous,
+  // isotropic strain increment 1 - factor (the affine compaction of a specimen). Velocities are
+  // kept; the neighbour list sees the move as displacement.
+  void scale_positions(const Vec3& centre, double factor);
   // Replaces the material-pair constants (e.g. the friction while compacting); the table must
   // have the same materials and the same optional pieces of the contact law as the one given at
   // construction (std::invalid_argument otherwise).

@@ -84,6 +84,16 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
   p.max_strain_rate =
       t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
   p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
+  const std::string compaction =
+      t.string_or("compaction", p.compaction == Compaction::affine ? "affine" : "walls");
+  if (compaction == "affine")
+    p.compaction = Compaction::affine;
+  else if (compaction == "walls")
+    p.compaction = Compaction::walls;
+  else
+    t.fail("compaction",
+           "expected \"walls\" (the walls' servos compact the specimen) or \"affine\" (the whole "
+           "box is strained homogeneously, then held by the walls)");
   p.compaction_restitution =
       t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
   if (!(p.compaction_restitution > 0 && p.compaction_restitution <= 1))

@@ -11,6 +11,7 @@
 
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
+#include "control/affine_compaction.hpp"
 #include "control/box_controller.hpp"
 #include "core/random_insertion.hpp"
 #include "core/simulation.hpp"
@@ -95,6 +96,38 @@ MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& 
                             s.density);
 }
 
+namespace {
+
+// The state of an isotropically held cuboid specimen, as hold_isotropic checks it.
+HoldState measure_hold_state(const Simulation& sim, double confining_stress) {
+  HoldState state;
+  state.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
+  state.max_stress_error = 0.0;
+  for (int k = 0; k < 6; ++k)
+    state.max_stress_error = std::max(
+        state.max_stress_error, std::abs(wall_stress(sim.walls(), k) / confining_stress - 1.0));
+  state.unbalanced = unbalanced_force_ratio(sim);
+  return state;
+}
+
+// Affine compaction (control/affine_compaction.hpp) until the mean wall stress has come within
+// 2 % of the confining stress; the walls' servos then take over (and `on_check` goes on steering
+// the friction there). `on_check` runs every 200 steps.
+void compact_affinely(Simulation& sim, const HoldCriteria& c,
+                      const std::function<bool(const HoldState&)>& on_check) {
+  const double t_end = sim.time() + c.max_time;
+  AffineCompaction compaction(c.confining_stress, c.max_strain_rate);
+  const ScopedListener attached(sim, compaction);
+  while (sim.time() < t_end) {
+    sim.advance(200);
+    on_check(measure_hold_state(sim, c.confining_stress));
+    if (compaction.stress_error() > -0.02) break;
+  }
+  stop_walls(sim);
+}
+
+}  // namespace
+
 HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
                          const std::function<bool(const HoldState&)>& on_check) {
   const double t_end = sim.time() + c.max_time;
@@ -105,12 +138,7 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
   HoldState state;
   while (sim.time() < t_end) {
     sim.advance(200);
-    state.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));
-    state.max_stress_error = 0.0;
-    for (int k = 0; k < 6; ++k)
-      state.max_stress_error = std::max(
-          state.max_stress_error, std::abs(wall_stress(sim.walls(), k) / c.confining_stress - 1.0));
-    state.unbalanced = unbalanced_force_ratio(sim);
+    state = measure_hold_state(sim, c.confining_stress);
     const bool may_stop = on_check(state);
     if (may_stop && state.max_stress_error < c.stress_tolerance &&
         state.unbalanced < c.unbalanced_tolerance) {
@@ -159,31 +187,35 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
                  cuboid_walls(placement.low, placement.high, s.lateral_material, s.platen_material),
                  table, settings);
   bool friction_restored = !s.target_solid_fraction;
-  const HoldState held = hold_isotropic(
-      sim,
-      HoldCriteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
-                   s.unbalanced_tolerance, s.max_time},
-      [&](const HoldState& state) {
-        if (interrupt_requested())
-          throw Interrupted("interrupted while preparing the specimen: nothing was saved");
-        const bool settled = state.max_stress_error < s.stress_tolerance &&
-                             state.unbalanced < s.unbalanced_tolerance;
-        if (!friction_restored && (state.solid_fraction >= *s.target_solid_fraction || settled)) {
-          // Target reached, or the frictionless packing settled below it: it cannot get denser
-          // at this stress, so the target is out of reach (reported).
-          out.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
-          PairTable restored = sim.pair_table();
-          set_compaction_contacts(restored, original, s, -1.0, s.compaction_restitution);
-          sim.set_pair_table(std::move(restored));
-          friction_restored = true;
-        }
-        if (progress)
-          progress->update(
-              std::min(1.0, sim.time() / s.max_time),
-              fmt::format("preparing: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}",
-                          state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
-        return friction_restored;
-      });
+  const char* stage = s.compaction == Compaction::affine ? "compacting" : "preparing";
+  const auto steer = [&](const HoldState& state) {
+    if (interrupt_requested())
+      throw Interrupted("interrupted while preparing the specimen: nothing was saved");
+    const bool settled =
+        state.max_stress_error < s.stress_tolerance && state.unbalanced < s.unbalanced_tolerance;
+    if (!friction_restored && (state.solid_fraction >= *s.target_solid_fraction || settled)) {
+      // Target reached, or the frictionless packing settled below it: it cannot get denser
+      // at this stress, so the target is out of reach (reported).
+      out.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
+      PairTable restored = sim.pair_table();
+      set_compaction_contacts(restored, original, s, -1.0, s.compaction_restitution);
+      sim.set_pair_table(std::move(restored));
+      friction_restored = true;
+    }
+    if (progress)
+      progress->update(
+          std::min(1.0, sim.time() / s.max_time),
+          fmt::format("{}: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}", stage,
+                      state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
+    return friction_restored;
+  };
+  const HoldCriteria criteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
+                              s.unbalanced_tolerance, s.max_time};
+  if (s.compaction == Compaction::affine) {
+    compact_affinely(sim, criteria, steer);
+    stage = "holding";
+  }
+  const HoldState held = hold_isotropic(sim, criteria, steer);
   out.equilibrium_reached = held.reached;
   out.low = box_low(sim.walls());
   out.high = box_high(sim.walls());

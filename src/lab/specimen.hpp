@@ -23,6 +23,11 @@ namespace grainlab {
 
 class Progress;
 
+// How the specimen is compacted to the confining stress: by the six walls' servos (the beads
+// follow the walls), or by an affine strain of the whole box (control/affine_compaction.hpp; the
+// stress builds everywhere at once, needed for large specimens), then held by the walls' servos.
+enum class Compaction { walls, affine };
+
 struct SpecimenSettings {
   long count = 11636;
   double diameter = 2e-3;                       // m, mean
@@ -33,7 +38,8 @@ struct SpecimenSettings {
   int bead_material = 0, lateral_material = 0, platen_material = 0;
   double density = 2500.0;  // kg/m^3
   double dt_fraction = 0.1;
-  double max_strain_rate = 10.0;        // 1/s, wall speed cap during compaction
+  double max_strain_rate = 10.0;  // 1/s, wall speed cap during compaction
+  Compaction compaction = Compaction::walls;
   double compaction_restitution = 0.3;  // e of every bead contact while compacting (faster rest)
   double stress_tolerance = 0.005;      // equilibrium: wall stresses within 0.5 % of the target
   double unbalanced_tolerance = 1e-4;   // and mean unbalanced / mean contact force below this

@@ -556,6 +556,8 @@ def plane_strain_bad_input():
     expect_bad_plane_strain('confining_stress = "150 kPa"', 'confining_stress = "-150 kPa"', "confining_stress")
     expect_bad_plane_strain('box = ["20 mm", "24 mm", "34 mm"]', 'box = ["12 mm", "40 mm", "34 mm"]',
                             "test.box", "8 across")
+    expect_bad_plane_strain('type = "plane_strain"', 'type = "plane_strain"\ncompaction = "growing"',
+                            "compaction", "affine")
 
 
 def plane_strain_checkpoint_survives_kill():
