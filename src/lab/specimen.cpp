@@ -89,6 +89,18 @@ void set_compaction_contacts(PairTable& table, const PairTable& original, const 
 
 }  // namespace
 
+PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
+                           double min_radius) {
+  const double e_measured = measured(s.bead_material, s.bead_material).restitution;
+  for (double e = s.compaction_restitution; e < e_measured; e += 0.05) {
+    PairTable damped = measured;
+    set_compaction_contacts(damped, measured, s, -1.0, e);
+    if (stable_time_step(time_step, damped, s.bead_material, min_radius).time_step >= time_step)
+      return damped;
+  }
+  return measured;
+}
+
 MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
                                     double min_radius) {
   return material_time_step(s.dt_fraction, table, s.bead_material,

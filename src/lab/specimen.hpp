@@ -54,6 +54,13 @@ struct SpecimenSettings {
 MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
                                     double min_radius);
 
+// The bead contacts of `measured` with their restitution lowered as far as a run at `time_step`
+// stays stable (contact/stability.hpp), but not below compaction_restitution: the most damped
+// contacts that can bring a specimen to rest at the test's own step. Only the static state is
+// kept, which does not depend on e (a re-equilibration before the loading).
+PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
+                           double min_radius);
+
 struct Specimen {
   ParticleStore particles;
   Vec3 low, high;  // box (wall positions), m
