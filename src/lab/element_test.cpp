@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "measure/boundary.hpp"
+#include "measure/solid_fraction.hpp"
 #include "measure/specimen_state.hpp"
 
 namespace grainlab {
@@ -130,7 +132,29 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
 }
 
 nlohmann::json specimen_json(const Specimen& s) {
+  // The bulk solid fraction includes the loose layer along the walls: also the interior value,
+  // three mean diameters from every wall (where that leaves at least 4 diameters), and the profile
+  // across each axis in slabs about one diameter thick (measure/solid_fraction.hpp).
+  double mean_radius = 0.0;
+  for (double r : s.particles.radius) mean_radius += r / s.particles.size();
+  const double d = 2.0 * mean_radius;
+  nlohmann::json profile;
+  std::vector<double> widths;
+  for (int a = 0; a < 3; ++a) {
+    const int bins = std::max(1, static_cast<int>(std::lround((s.high[a] - s.low[a]) / d)));
+    widths.push_back((s.high[a] - s.low[a]) / bins);
+    profile[std::string(1, "xyz"[a])] = solid_fraction_profile(s.particles, s.low, s.high, a, bins);
+  }
+  profile["bin_width_m"] = widths;
+  // null when the specimen has no interior at least 4 diameters across in every direction.
+  nlohmann::json interior = nullptr;
+  bool room = true;
+  for (int a = 0; a < 3; ++a) room = room && s.high[a] - s.low[a] - 6 * d >= 4 * d;
+  if (room) interior = interior_solid_fraction(s.particles, s.low, s.high, 3 * d);
   return {{"particles", s.particles.size()},
+          {"interior_solid_fraction", interior},
+          {"interior_margin_m", 3 * d},
+          {"solid_fraction_profile", profile},
           {"inserted_box_m", {s.inserted_box.x, s.inserted_box.y, s.inserted_box.z}},
           {"inserted_solid_fraction", s.inserted_solid_fraction},
           {"final_box_m", {s.high.x - s.low.x, s.high.y - s.low.y, s.high.z - s.low.z}},
@@ -305,6 +329,12 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   j["dt_fraction"] = dt / step.collision_duration;
   j["collision_duration_s"] = step.collision_duration;
   j["time_step_limited_by"] = step.limited_by;
+  if (!mount.equilibrate) {  // the box held isotropically: its stress state at the start
+    const Tensor3 lw = love_weber_stress(run.sim, box_volume(run.sim.walls()));
+    j["initial_love_weber_stress_Pa"] = {{lw[0][0], lw[0][1], lw[0][2]},
+                                         {lw[1][0], lw[1][1], lw[1][2]},
+                                         {lw[2][0], lw[2][1], lw[2][2]}};
+  }
   j["initial_solid_fraction"] = solid_fraction(
       run.sim.particles(), mount.volume ? mount.volume(run.sim) : box_volume(run.sim.walls()));
   j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced},
