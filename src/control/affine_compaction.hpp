@@ -36,6 +36,9 @@ class AffineCompaction : public StepListener {
   // Mean wall stress (averaged as above) relative to the target, minus 1.
   double stress_error() const { return mean_stress_ / target_stress_ - 1.0; }
   double strain_rate() const { return strain_rate_; }  // 1/s, compressive positive, last step
+  // The averaged mean wall stress, Pa (for checkpoints).
+  double mean_stress() const { return mean_stress_; }
+  void set_mean_stress(double v) { mean_stress_ = v; }
 
  private:
   double target_stress_;    // Pa

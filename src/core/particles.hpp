@@ -4,7 +4,9 @@
 // A particle with inverse_mass = 0 is fixed (it neither moves nor rotates).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -36,6 +38,12 @@ struct ParticleStore {
   std::vector<Vec3> external_force;  // N
 
   size_t size() const { return position.size(); }
+  // m; of an empty store, +infinity
+  double smallest_radius() const {
+    double r_min = std::numeric_limits<double>::infinity();
+    for (double r : radius) r_min = std::min(r_min, r);
+    return r_min;
+  }
 
   void add(uint32_t particle_id, int32_t material_index, double sphere_radius, double density,
            const Vec3& x, const Vec3& v, const Vec3& w, bool fixed) {

@@ -36,10 +36,10 @@ bool safe_entry(const std::string& entry) {
 }
 
 // The names of the result files grainlab writes at the top of an output directory.
-constexpr const char* result_names[] = {"summary.json",   "trace.csv",      "final.csv",
-                                        "walls.csv",      "particles.pvd",  "curve.csv",
-                                        "curve.png",      "specimen.csv",   "specimen.json",
-                                        "trajectory.csv", "force_time.csv", "checkpoint.bin"};
+constexpr const char* result_names[] = {
+    "summary.json",   "trace.csv",      "final.csv",       "walls.csv",     "particles.pvd",
+    "curve.csv",      "curve.png",      "specimen.csv",    "specimen.json", "trajectory.csv",
+    "force_time.csv", "checkpoint.bin", "preparation.bin", "band.png",      "band_map.csv"};
 
 }  // namespace
 

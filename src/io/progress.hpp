@@ -18,6 +18,7 @@ class Progress {
   std::string label_;
   bool quiet_, tty_;
   double interval_s_;
+  double first_fraction_ = -1.0;  // at the first update: a resumed run starts part-way
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -11,6 +11,9 @@ struct RunOptions {
   bool overwrite = false;
   int threads = 0;  // 0: OpenMP's default
   bool quiet = false;
+  // Element tests: continue the preparation checkpointed in out_dir (grainlab run --resume), with
+  // the config text stored there; empty for a fresh run.
+  std::string resumed_preparation_config;
 };
 
 // Throws ConfigError for bad input (nothing is written then), BlowUpError if the run blows up.

@@ -1,6 +1,7 @@
 // The element-test checkpoint file: magic, test type, config, run info, curve and VTK index so
-// far, the stage's own state, wall time, the simulation state, and an FNV-1a checksum of all of
-// it at the end (lab/element_test.hpp: save_checkpoint, peek_checkpoint, load_checkpoint).
+// far, the stage's own state, wall time, the simulation state, sealed with a checksum
+// (lab/checkpoint_file.hpp; lab/element_test.hpp: save_checkpoint, peek_checkpoint,
+// load_checkpoint).
 #include <fmt/format.h>
 
 #include <cstring>
@@ -10,6 +11,7 @@
 
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
+#include "lab/checkpoint_file.hpp"
 #include "lab/element_test.hpp"
 
 namespace grainlab {
@@ -17,35 +19,6 @@ namespace grainlab {
 namespace {
 
 constexpr uint64_t checkpoint_magic = 0x67726e6c656c7432;  // "grnlelt2"
-
-// FNV-1a over the checkpoint's bytes, stored at its end: a damaged file is refused instead of
-// resuming to a different result.
-uint64_t checksum(std::string_view bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
-  return h;
-}
-
-// The checkpoint without its checksum, after verifying it.
-std::string verified(std::string bytes, const std::string& path) {
-  uint64_t stored = 0;
-  if (bytes.size() < sizeof stored)
-    throw ConfigError(fmt::format("{}: damaged checkpoint (truncated)", path));
-  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
-  bytes.resize(bytes.size() - sizeof stored);
-  if (checksum(bytes) != stored)
-    throw ConfigError(fmt::format(
-        "{}: damaged checkpoint (checksum mismatch): it cannot be resumed; rerun the test", path));
-  return bytes;
-}
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 }  // namespace
 
@@ -61,13 +34,12 @@ void save_checkpoint(const ElementRun& run, const std::string& path) {
   out.text(run.test_state);
   out.value(run.wall_time_before);
   run.sim.save_state(out);
-  out.value(checksum(out.bytes()));
-  write_file_atomically(path, out.bytes());
+  write_sealed(out, path);
 }
 
 void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
                      std::string& config_text) {
-  StateReader in(verified(read_all(path), path));
+  StateReader in(read_sealed(path));
   try {
     if (in.value<uint64_t>() != checkpoint_magic)
       throw std::runtime_error("not a grainlab element-test checkpoint");
@@ -80,7 +52,7 @@ void peek_checkpoint(const std::string& path, std::string& type, std::string& co
 }
 
 ElementRun load_checkpoint(const std::string& path, PairTable table) {
-  StateReader in(verified(read_all(path), path));
+  StateReader in(read_sealed(path));
   try {
     if (in.value<uint64_t>() != checkpoint_magic)
       throw std::runtime_error("not a grainlab element-test checkpoint");

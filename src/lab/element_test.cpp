@@ -80,12 +80,25 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
       t.fail("target_solid_fraction", "expected a solid fraction in (0.45, 0.66)");
     p.target_solid_fraction = *phi;
   }
+  if (auto mu = t.optional_number("compaction_friction", Quantity::dimensionless)) {
+    if (!(*mu >= 0 && *mu <= 1))
+      t.fail("compaction_friction",
+             "expected a bead-bead friction coefficient in [0, 1] (below the measured one packs "
+             "denser, above it looser)");
+    p.compaction_friction = *mu;
+  }
+  p.wall_friction_while_preparing =
+      t.boolean_or("wall_friction_while_preparing", p.wall_friction_while_preparing);
   p.dt_fraction = t.number_or("dt_fraction", Quantity::dimensionless, p.dt_fraction);
   if (!(p.dt_fraction > 0 && p.dt_fraction <= 0.3))
     t.fail("dt_fraction", "expected a fraction of t_c in (0, 0.3]");
   p.max_strain_rate =
       t.number_or("compaction_strain_rate", Quantity::dimensionless, p.max_strain_rate);
+  if (!(p.max_strain_rate > 0 && p.max_strain_rate <= 1e3))
+    t.fail("compaction_strain_rate", "expected a strain rate in (0, 1000] 1/s");
   p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
+  if (!(p.max_time > 0 && p.max_time <= 100))
+    t.fail("preparation_max_time", "expected a simulated time in (0, 100] s");
   const std::string compaction =
       t.string_or("compaction", p.compaction == Compaction::affine ? "affine" : "walls");
   if (compaction == "affine")
@@ -151,38 +164,42 @@ nlohmann::json specimen_json(const Specimen& s) {
   bool room = true;
   for (int a = 0; a < 3; ++a) room = room && s.high[a] - s.low[a] - 6 * d >= 4 * d;
   if (room) interior = interior_solid_fraction(s.particles, s.low, s.high, 3 * d);
-  return {{"particles", s.particles.size()},
-          {"interior_solid_fraction", interior},
-          {"interior_margin_m", 3 * d},
-          {"solid_fraction_profile", profile},
-          {"inserted_box_m", {s.inserted_box.x, s.inserted_box.y, s.inserted_box.z}},
-          {"inserted_solid_fraction", s.inserted_solid_fraction},
-          {"final_box_m", {s.high.x - s.low.x, s.high.y - s.low.y, s.high.z - s.low.z}},
-          {"solid_fraction", s.solid_fraction},
-          {"coordination_number", s.coordination_number},
-          {"unbalanced_force_ratio", s.unbalanced_force_ratio},
-          {"max_wall_stress_error", s.max_stress_error},
-          {"compaction_friction", s.compaction_friction},
-          {"compaction_restitution", s.compaction_restitution},
-          {"equilibrium_reached", s.equilibrium_reached},
-          {"target_solid_fraction_reached", s.target_reached},
-          {"simulated_time_s", s.simulated_time}};
+  return {
+      {"particles", s.particles.size()},
+      {"interior_solid_fraction", interior},
+      {"interior_margin_m", 3 * d},
+      {"solid_fraction_profile", profile},
+      {"inserted_box_m", {s.inserted_box.x, s.inserted_box.y, s.inserted_box.z}},
+      {"inserted_solid_fraction", s.inserted_solid_fraction},
+      {"final_box_m", {s.high.x - s.low.x, s.high.y - s.low.y, s.high.z - s.low.z}},
+      {"solid_fraction", s.solid_fraction},
+      {"coordination_number", s.coordination_number},
+      {"unbalanced_force_ratio", s.unbalanced_force_ratio},
+      {"max_wall_stress_error", s.max_stress_error},
+      {"compaction_friction", s.compaction_friction},
+      {"wall_friction_while_preparing", s.wall_friction_while_preparing},
+      {"love_weber_stress_diagonal_Pa",  // null: read from a file (no contact forces)
+       s.love_weber_diagonal == std::array<double, 3>{} ? nlohmann::json(nullptr)
+                                                        : nlohmann::json(s.love_weber_diagonal)},
+      {"compaction_restitution", s.compaction_restitution},
+      {"equilibrium_reached", s.equilibrium_reached},
+      {"target_solid_fraction_reached", s.target_reached},
+      {"simulated_time_s", s.simulated_time}};
 }
 
-Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress) {
+Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress,
+                         const PreparationCheckpoints* checkpoints) {
   if (c.settings.specimen_file) {
     std::string file = *c.settings.specimen_file;
     if (std::filesystem::is_directory(file)) file += "/specimen.csv";
     return load_specimen(file, c.settings.specimen.density, c.settings.specimen.bead_material);
   }
-  return prepare_cuboid_specimen(c.settings.specimen, c.table, &progress);
+  return prepare_cuboid_specimen(c.settings.specimen, c.table, &progress, checkpoints);
 }
 
 ElementTimeStep element_time_step(const SpecimenSettings& sp, const PairTable& table,
                                   const ParticleStore& particles) {
-  double r_min = 1e300;
-  for (double r : particles.radius) r_min = std::min(r_min, r);
-  const MaterialTimeStep step = specimen_time_step(sp, table, r_min);
+  const MaterialTimeStep step = specimen_time_step(sp, table, particles.smallest_radius());
   ElementTimeStep out;
   out.collision_duration = step.collision_duration;
   out.limited_by = step.limited_by;
@@ -291,11 +308,17 @@ std::string read_text(const std::string& path) {
 ElementRun start_element_test(const std::string& type, const std::string& path,
                               const toml::table& root, const ElementTestConfig& c,
                               const std::string& out_dir, Progress& progress,
-                              const SpecimenMount& mount) {
+                              const SpecimenMount& mount, const std::string& resumed_config) {
   const ElementTestSettings& s = c.settings;
   const SpecimenSettings& sp = s.specimen;
   const auto wall_start = std::chrono::steady_clock::now();
-  const Specimen specimen = obtain_specimen(c, progress);
+  // The preparation checkpoints every checkpoint_interval (preparation.bin), and a resumed run
+  // continues it with the config text stored there.
+  const std::string config_text = resumed_config.empty() ? read_text(path) : resumed_config;
+  const PreparationCheckpoints checkpoints{
+      out_dir + "/preparation.bin", s.checkpoint_interval, type, path, config_text,
+      !resumed_config.empty()};
+  const Specimen specimen = obtain_specimen(c, progress, &checkpoints);
   if (!s.specimen_file) save_specimen(out_dir + "/specimen.csv", specimen);
   const ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);
   ElementRun run{Simulation(specimen.particles,
@@ -303,7 +326,7 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
                                         : cuboid_walls(specimen.low, specimen.high,
                                                        sp.lateral_material, sp.platen_material),
                             c.table, step.settings),
-                 type, path, read_text(path)};
+                 type, path, config_text};
   // A specimen is stored without contact history (tangential springs), so it is first brought
   // back to equilibrium under the confining stress before the loading starts.
   const auto on_check = [&](const HoldState& state) {
@@ -350,10 +373,14 @@ ElementRun begin_element_test(const std::string& type, const std::string& path,
                               const toml::table& root, const ElementTestConfig& c,
                               const RunOptions& options, const SpecimenMount& mount) {
   check_specimen_file(path, c.settings);
-  prepare_output_dir(options.out_dir, options.overwrite);
+  if (options.resumed_preparation_config.empty())
+    prepare_output_dir(options.out_dir, options.overwrite);
+  else
+    continue_in_output_dir(options.out_dir);
   install_interrupt_handler();
   Progress preparing("grainlab " + type, options.quiet);
-  return start_element_test(type, path, root, c, options.out_dir, preparing, mount);
+  return start_element_test(type, path, root, c, options.out_dir, preparing, mount,
+                            options.resumed_preparation_config);
 }
 
 void load_to_end(ElementRun& run, LoadingStage& stage, double checkpoint_interval_s,

@@ -13,8 +13,10 @@
 //                           the test by its type in the registry (lab/registry.cpp)
 #pragma once
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -64,7 +66,8 @@ void check_step_budget(const ElementTestConfig& c, double max_axial_strain, int 
                        const TableReader& t);
 
 // The loaded specimen file or a freshly prepared specimen.
-Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress);
+Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress,
+                         const PreparationCheckpoints* checkpoints = nullptr);
 nlohmann::json specimen_json(const Specimen& s);
 
 // The time step of a test on this specimen: dt_fraction * t_c of the smallest bead, lowered
@@ -101,6 +104,31 @@ struct ElementRun {
   double wall_time_before = 0.0;  // s spent in earlier sessions of this run
 };
 
+// The start of a shear test's loading (triaxial, plane strain): the platens' rate, the steps to
+// max_axial_strain and the constants every curve row needs, written into the test's progress
+// values (`P`, plain values carrying these names); run_info gets the "loading" entry.
+template <class P>
+LoadingRate plan_shear_loading(P& p, ElementRun& run, const ElementTestSettings& s,
+                               const Vec3& size0, double max_axial_strain) {
+  const SpecimenSettings& sp = s.specimen;
+  const LoadingRate rate = loading_rate(s, size0.z);
+  p.size0 = size0;
+  p.platen_speed = rate.platen_speed;
+  p.strain_rate = rate.strain_rate;
+  p.confining_stress = sp.confining_stress;
+  p.diameter = sp.diameter;
+  p.density = sp.density;
+  p.output_strain_interval = s.output_strain_interval;
+  p.vtk_strain_interval = s.vtk ? s.vtk_strain_interval : 0.0;
+  // Each platen moves at the platen speed: the height closes at twice it.
+  p.total_steps = static_cast<long>(std::ceil(max_axial_strain * size0.z / (2.0 * p.platen_speed) /
+                                              run.sim.settings().time_step));
+  nlohmann::json j = nlohmann::json::parse(run.run_info);
+  j["loading"] = loading_json(rate, s);
+  run.run_info = j.dump();
+  return rate;
+}
+
 // How a test holds its prepared specimen: the walls its Simulation is built with, the
 // re-equilibration under the confining stress before the loading, and the specimen's volume.
 // The default (an empty mount): the six walls of the preparation box, held isotropically by servo
@@ -118,7 +146,8 @@ struct SpecimenMount {
 ElementRun start_element_test(const std::string& type, const std::string& config_path,
                               const toml::table& root, const ElementTestConfig& c,
                               const std::string& out_dir, Progress& progress,
-                              const SpecimenMount& mount = {});
+                              const SpecimenMount& mount = {},
+                              const std::string& resumed_config = {});
 
 // The first steps of every element test's run: the specimen file checked, the output directory
 // prepared, Ctrl-C handled, then start_element_test.
@@ -183,6 +212,25 @@ inline bool output_due(double axial_strain, long& next, double interval, bool la
   if (!(axial_strain >= next * interval - 1e-12 || last_step)) return false;
   ++next;
   return true;
+}
+
+// The outputs of a loading driven by axial strain (progress values `P` as in
+// plan_shear_loading, plus step, next_output, next_vtk and last_axial): a curve row (`record`)
+// and the progress line every output strain interval, a snapshot every vtk strain interval (none
+// when 0), each also at the loading's last step.
+template <class P, class Record, class Snapshot>
+void strain_outputs(P& p, double axial_strain, Progress& progress, Record&& record,
+                    Snapshot&& snapshot) {
+  const bool last = p.step == p.total_steps;
+  if (output_due(axial_strain, p.next_output, p.output_strain_interval, last)) {
+    record();
+    progress.update(static_cast<double>(p.step) / p.total_steps,
+                    fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
+                                100 * axial_strain, 1e-3 * p.last_axial));
+  }
+  if (p.vtk_strain_interval > 0 &&
+      output_due(axial_strain, p.next_vtk, p.vtk_strain_interval, last))
+    snapshot();
 }
 
 // A ParaView snapshot in DIR/vtk: the particles' and the walls' .vtu texts at `step`, added to the

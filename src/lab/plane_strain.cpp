@@ -51,9 +51,8 @@ SpecimenMount plane_strain_mount(const SpecimenSettings& sp) {
     // e = 0.926 the 88,400-bead specimen rang for minutes (unbalanced force ratio cycling between
     // 0.007 and 0.03); damped contacts bring it to rest, then the measured ones are restored.
     const PairTable measured = sim.pair_table();
-    double r_min = 1e300;
-    for (double r : sim.particles().radius) r_min = std::min(r_min, r);
-    sim.set_pair_table(resting_contacts(sp, measured, sim.settings().time_step, r_min));
+    sim.set_pair_table(resting_contacts(sp, measured, sim.settings().time_step,
+                                        sim.particles().smallest_radius()));
     Membrane membrane(plane_strain_membrane(p, sp.diameter));
     membrane.start(sim);
     const AxisControl held{AxisMode::stress, p};
@@ -67,7 +66,7 @@ SpecimenMount plane_strain_mount(const SpecimenSettings& sp) {
         const PlaneStrainBox box = plane_strain_box(sim, membrane);
         state.solid_fraction = solid_fraction(sim.particles(), box.volume());
         // The walls at p, and the particles' lateral stress at the boundary's (the membrane's p
-        // plus what the fixed walls' friction adds).
+        // plus what the walls' and platens' friction adds).
         state.max_stress_error =
             std::abs(love_weber_stress(sim, box.volume())[0][0] /
                          boundary_stress(sim, box.centre(), box.volume())[0][0] -
@@ -142,13 +141,13 @@ void finish(const ElementRun& run, const PlaneStrainProgress& p, const std::stri
       {"lateral_stress_particles_vs_boundary_max", p.max_membrane_error},
       {"within_2_percent", p.max_membrane_error <= 0.02},
       {"lateral_stress_particles_vs_applied_max", p.max_applied_error},
-      {"fixed_wall_friction_share_of_lateral_stress",
+      {"wall_friction_share_of_lateral_stress",
        p.membrane_samples ? p.wall_friction_share_sum / p.membrane_samples : 0.0},
       {"comparison",
        "particles: Love-Weber average over the specimen; boundary: the average-stress theorem "
-       "over the membrane's forces (at the beads' surface) and the fixed walls' contacts, whose "
-       "friction adds to the membrane's pressure (share reported); applied: the membrane's "
-       "pressure"},
+       "over the membrane's forces (at the beads' surface) and the contacts of the fixed walls "
+       "and the platens, whose friction adds to the membrane's pressure (share reported); "
+       "applied: the membrane's pressure"},
       {"max_escaped_beads", p.max_escaped}};
   j["max_out_of_plane_strain"] = p.max_out_of_plane_strain;
   const BandAnalysis band = analyse_shear_band(run.sim.particles(), p.diameter);
@@ -240,27 +239,16 @@ void run_plane_strain(const std::string& path, const toml::table& root, const Ru
   ElementRun run =
       begin_element_test("plane_strain", path, root, c, options, plane_strain_mount(sp));
   PlaneStrainProgress p;
-  p.size0 = located_box(run.sim, sp).size();
-  const LoadingRate rate = loading_rate(s, p.size0.z);
-  p.platen_speed = rate.platen_speed;
-  p.strain_rate = rate.strain_rate;
-  p.confining_stress = sp.confining_stress;
-  p.diameter = sp.diameter;
-  p.density = sp.density;
-  p.output_strain_interval = s.output_strain_interval;
-  p.vtk_strain_interval = s.vtk ? s.vtk_strain_interval : 0.0;
-  const double dt = run.sim.settings().time_step;
-  p.total_steps =
-      static_cast<long>(std::ceil(c.max_axial_strain * p.size0.z / (2.0 * p.platen_speed) / dt));
+  plan_shear_loading(p, run, s, located_box(run.sim, sp).size(), c.max_axial_strain);
   if (!options.quiet)
     fmt::print(stderr,
                "plane strain: {} particles, {:.2f} wide x {:.2f} thick x {:.2f} high mm; platens "
                "at {:.4g} m/s each (strain rate {:.3g} 1/s, {}), dt = {:.3g} s, {} steps\n",
                run.sim.particles().size(), 1e3 * p.size0.x, 1e3 * p.size0.y, 1e3 * p.size0.z,
                p.platen_speed, p.strain_rate,
-               s.platen_speed ? "given" : "from the inertial-number bound", dt, p.total_steps);
+               s.platen_speed ? "given" : "from the inertial-number bound",
+               run.sim.settings().time_step, p.total_steps);
   nlohmann::json j = nlohmann::json::parse(run.run_info);
-  j["loading"] = loading_json(rate, s);
   j["initial_size_m"] = {{"width", p.size0.x}, {"thickness", p.size0.y}, {"height", p.size0.z}};
   run.run_info = j.dump();
   shear_and_finish(run, p, c, options, nullptr);

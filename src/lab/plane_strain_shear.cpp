@@ -88,21 +88,11 @@ void PlaneStrainShear::after_step(ElementRun& run) {
 }
 
 void PlaneStrainShear::observe(ElementRun& run, Progress& progress) {
-  PlaneStrainProgress& p = p_;
   const double height =
       run.sim.walls()[top_platen].point.z - run.sim.walls()[bottom_platen].point.z;
-  const double axial_strain = (p.size0.z - height) / p.size0.z;
-  axial_strain_ = axial_strain;
-  const bool last = p.step == p.total_steps;
-  if (output_due(axial_strain, p.next_output, p.output_strain_interval, last)) {
-    record(run);
-    progress.update(static_cast<double>(p.step) / p.total_steps,
-                    fmt::format("axial strain {:.2f} %, axial stress {:.1f} kPa",
-                                100 * axial_strain, 1e-3 * p.last_axial));
-  }
-  if (p.vtk_strain_interval > 0 &&
-      output_due(axial_strain, p.next_vtk, p.vtk_strain_interval, last))
-    snapshot(run);
+  axial_strain_ = (p_.size0.z - height) / p_.size0.z;
+  strain_outputs(
+      p_, axial_strain_, progress, [&] { record(run); }, [&] { snapshot(run); });
 }
 
 // One row of curve.csv (stresses averaged over the interval since the last row; at the start

@@ -23,10 +23,10 @@ struct PlaneStrainProgress {  // plain values, saved as they are
   double peak_axial = 0, peak_strain = 0, peak_deviator = 0, peak_lateral = 0, max_inertial = 0;
   // Over the rows past 0.5 % axial strain (the start-up transient of the platens):
   //   membrane error: the particles' (Love-Weber) lateral stress against the boundary-average
-  //     lateral stress (membrane forces and the fixed walls' friction, measure/specimen_state.hpp),
+  //     lateral stress (membrane forces and every wall contact, measure/specimen_state.hpp),
   //     RMS and worst;
-  //   the share of the lateral stress the fixed walls' friction adds to the membrane's pressure
-  //     (boundary-average / applied - 1), summed for its mean.
+  //   the share of the lateral stress the friction of the fixed walls and the platens adds to
+  //     the membrane's pressure (boundary-average / applied - 1), summed for its mean.
   double membrane_error2 = 0, max_membrane_error = 0, wall_friction_share_sum = 0;
   double max_applied_error = 0;  // |particles / applied - 1|, worst
   long membrane_samples = 0, max_escaped = 0;

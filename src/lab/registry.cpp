@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <filesystem>
 
 #include "geometry/cuboid_box.hpp"
 #include "grainlab/version.hpp"
@@ -71,7 +72,26 @@ void run_lab_test(const std::string& path, const toml::table& root, const RunOpt
 
 void resume_lab_test(const RunOptions& options) {
   const std::string checkpoint = options.out_dir + "/checkpoint.bin";
+  const std::string preparation = options.out_dir + "/preparation.bin";
   std::string type, path, text;
+  if (!std::filesystem::exists(checkpoint) && std::filesystem::exists(preparation)) {
+    // Killed before the loading's first checkpoint: the preparation continues, then the run.
+    peek_preparation_checkpoint(preparation, type, path, text);
+    toml::table root;
+    try {
+      root = toml::parse(text, path);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", preparation,
+                                    e.description()));
+    }
+    const LabTestEntry& e = entry_for(path, root);
+    if (type != e.type || !e.element_config)
+      throw ConfigError(fmt::format("{}: a {} preparation cannot be resumed", preparation, type));
+    RunOptions resumed = options;
+    resumed.resumed_preparation_config = text;
+    e.run(path, root, resumed);
+    return;
+  }
   peek_checkpoint(checkpoint, type, path, text);
   toml::table root;
   try {

@@ -10,6 +10,7 @@
 // 0.42); the compression then shrinks the specimen, and the final dimensions are reported.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -35,6 +36,17 @@ struct SpecimenSettings {
   Vec3 nominal_box{0.035, 0.035, 0.08};         // m: sets the aspect ratio
   double confining_stress = 150e3;              // Pa
   std::optional<double> target_solid_fraction;  // steer the compaction friction to hit it
+  // Bead-bead friction while compacting: below the measured one packs denser, above it looser
+  // (the measured friction is switched on at the target, or once the packing has settled).
+  // Unset: 0 with a target solid fraction, else the measured friction.
+  std::optional<double> compaction_friction;
+  // false: the walls are frictionless for the whole preparation (no shear locked into the wall
+  // contacts, so the specimen starts isotropic); their measured friction acts only in the test.
+  bool wall_friction_while_preparing = true;
+  // Love-Weber average stress at the end of the preparation (Pa, compression positive): equal to
+  // the confining stress on every axis when the specimen is isotropic; unknown (zero) for a
+  // specimen read from a file, which carries no contact forces.
+  std::array<double, 3> love_weber_diagonal{};
   int bead_material = 0, lateral_material = 0, platen_material = 0;
   double density = 2500.0;  // kg/m^3
   double dt_fraction = 0.1;
@@ -68,7 +80,12 @@ struct Specimen {
   double coordination_number = 0.0;
   double unbalanced_force_ratio = 0.0;
   double max_stress_error = 0.0;     // relative, over the six walls
-  double compaction_friction = 0.0;  // friction used while compacting
+  double compaction_friction = 0.0;  // bead-bead friction used while compacting
+  bool wall_friction_while_preparing = true;
+  // Love-Weber average stress at the end of the preparation (Pa, compression positive): equal to
+  // the confining stress on every axis when the specimen is isotropic; unknown (zero) for a
+  // specimen read from a file, which carries no contact forces.
+  std::array<double, 3> love_weber_diagonal{};
   double compaction_restitution = 0.0;
   bool equilibrium_reached = false;
   bool target_reached = true;   // false: the target solid fraction was out of reach
@@ -96,7 +113,23 @@ struct HoldState {
 HoldState hold_isotropic(Simulation& sim, const HoldCriteria& criteria,
                          const std::function<bool(const HoldState&)>& on_check);
 
-Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress);
+// Periodic checkpoints of a preparation: every `interval_s` of wall time, on Ctrl-C and at its
+// end, the preparation's whole state goes to `path` (sealed, lab/checkpoint_file.hpp) with the
+// test type and config it belongs to; with `resume` the preparation continues from that file
+// and ends with the same specimen, bit for bit, as an uninterrupted one.
+struct PreparationCheckpoints {
+  std::string path;
+  double interval_s = 600.0;
+  std::string type, config_path, config_text;
+  bool resume = false;
+};
+
+Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress,
+                                 const PreparationCheckpoints* checkpoints = nullptr);
+
+// The test type and config stored in a preparation checkpoint; ConfigError if it is damaged.
+void peek_preparation_checkpoint(const std::string& path, std::string& type,
+                                 std::string& config_path, std::string& config_text);
 
 // Exactly reloadable text form (17 significant digits): one header line with the box, then
 // id,material,radius,x,y,z per particle.

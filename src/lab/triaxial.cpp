@@ -55,17 +55,19 @@ void finish_triaxial(const ElementRun& run, const ShearProgress& p, const std::s
       {"laboratory_axial_strain_at_peak", lab_axial_strain_at_peak},
       {"published_dem_peak_axial_stress_Pa", published_dem_peak_axial_stress},
       {"difference_to_laboratory", p.peak_axial / lab_peak_axial_stress - 1.0},
+      {"strain_at_peak_difference_to_laboratory", p.peak_strain / lab_axial_strain_at_peak - 1.0},
       {"difference_to_published_dem", p.peak_axial / published_dem_peak_axial_stress - 1.0}};
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot_triaxial_curve(dir);
   if (!quiet)
     fmt::print(
         "triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 342.4 kPa at "
-        "5.11 % ({:+.1f} %), "
+        "5.11 % (stress {:+.1f} %, strain at peak {:+.1f} %), "
         "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} % (worst interval "
         "{:.2f} %); particle vs boundary stress within {:.2f} %; wall time {:.0f} s\n",
         1e-3 * p.peak_axial, 100 * p.peak_strain,
         100 * (p.peak_axial / lab_peak_axial_stress - 1.0),
+        100 * (p.peak_strain / lab_axial_strain_at_peak - 1.0),
         100 * (p.peak_axial / published_dem_peak_axial_stress - 1.0), 100 * rms,
         100 * p.max_lateral_error, 100 * p.worst_agreement, j["wall_time_s"].get<double>());
 }
@@ -90,32 +92,17 @@ TriaxialConfig read_triaxial_config(const std::string& path, const toml::table& 
 void run_triaxial(const std::string& path, const toml::table& root, const RunOptions& options) {
   const TriaxialConfig c = read_triaxial_config(path, root);
   const ElementTestSettings& s = c.settings;
-  const SpecimenSettings& sp = s.specimen;
   ElementRun run = begin_element_test("triaxial", path, root, c, options);
   ShearProgress p;
-  p.size0 = box_size(run.sim.walls());
-  const LoadingRate rate = loading_rate(s, p.size0.z);
-  p.platen_speed = rate.platen_speed;
-  p.strain_rate = rate.strain_rate;
-  p.confining_stress = sp.confining_stress;
-  p.diameter = sp.diameter;
-  p.density = sp.density;
-  p.output_strain_interval = s.output_strain_interval;
-  p.vtk_strain_interval = s.vtk ? s.vtk_strain_interval : 0.0;
-  const double dt = run.sim.settings().time_step;
-  p.total_steps =
-      static_cast<long>(std::ceil(c.max_axial_strain * p.size0.z / (2.0 * p.platen_speed) / dt));
+  plan_shear_loading(p, run, s, box_size(run.sim.walls()), c.max_axial_strain);
   if (!options.quiet)
     fmt::print(stderr,
                "triaxial: {} particles, box {:.2f} x {:.2f} x {:.2f} mm, solid fraction {:.4f}; "
                "platens at {:.4g} m/s each (strain rate {:.3g} 1/s, {}), dt = {:.3g} s, {} steps\n",
                run.sim.particles().size(), 1e3 * p.size0.x, 1e3 * p.size0.y, 1e3 * p.size0.z,
                solid_fraction(run.sim.particles(), box_volume(run.sim.walls())), p.platen_speed,
-               p.strain_rate, s.platen_speed ? "given" : "from the inertial-number bound", dt,
-               p.total_steps);
-  nlohmann::json j = nlohmann::json::parse(run.run_info);
-  j["loading"] = loading_json(rate, s);
-  run.run_info = j.dump();
+               p.strain_rate, s.platen_speed ? "given" : "from the inertial-number bound",
+               run.sim.settings().time_step, p.total_steps);
   shear_and_finish(run, p, c, options);
 }
 

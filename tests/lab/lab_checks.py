@@ -169,24 +169,28 @@ def triaxial_interrupt_and_resume():
         compare_runs(a, b)
 
 
-def kill_after_checkpoint_then_resume(d, path, polls):
-    """Runs `path` twice: once through, once killed (SIGKILL) just after its first periodic
-    checkpoint and resumed; both must give the same curve and summary."""
+def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin", linger=0.3):
+    """Runs `path` twice: once through, once killed (SIGKILL) `linger` s after its first periodic
+    `checkpoint` file appeared and resumed; both must give the same curve and summary. Returns the
+    two output directories."""
     import time
     a, b = os.path.join(d, "a"), os.path.join(d, "b")
     assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
     p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
     for _ in range(polls):
-        if os.path.exists(os.path.join(b, "checkpoint.bin")):
+        if os.path.exists(os.path.join(b, checkpoint)):
             break
         time.sleep(0.01)
-    time.sleep(0.3)
+    time.sleep(linger)
     p.kill()  # no chance to write anything more
     p.wait()
-    assert os.path.exists(os.path.join(b, "checkpoint.bin")), "a periodic checkpoint must exist"
+    assert os.path.exists(os.path.join(b, checkpoint)), f"a periodic {checkpoint} must exist"
+    if checkpoint == "preparation.bin":
+        assert not os.path.exists(os.path.join(b, "specimen.csv")), "killed after the preparation"
     r = run("run", "--resume", b, "--quiet", "--threads", "2")
     assert r.returncode == 0, r.stderr
     compare_runs(a, b)
+    return a, b
 
 
 def triaxial_periodic_checkpoint_survives_kill():
@@ -558,6 +562,14 @@ def plane_strain_bad_input():
                             "test.box", "8 across")
     expect_bad_plane_strain('type = "plane_strain"', 'type = "plane_strain"\ncompaction = "growing"',
                             "compaction", "affine")
+    for key, value, fragment in (("compaction_friction", "1.5", "[0, 1]"),
+                                 ("compaction_friction", "-0.1", "[0, 1]"),
+                                 ("wall_friction_while_preparing", '"no"', "wall_friction_while_preparing"),
+                                 ("compaction_strain_rate", "0", "(0, 1000]"),
+                                 ("compaction_strain_rate", "1e9", "(0, 1000]"),
+                                 ("preparation_max_time", '"0 s"', "(0, 100]"),
+                                 ("preparation_max_time", '"1e6 s"', "(0, 100]")):
+        expect_bad_plane_strain('type = "plane_strain"', f'type = "plane_strain"\n{key} = {value}', key, fragment)
 
 
 def plane_strain_checkpoint_survives_kill():
@@ -575,6 +587,46 @@ def plane_strain_checkpoint_survives_kill():
         assert r.returncode == 0, r.stderr
         open(path, "w").write(text.replace("count = 800", f'count = 800\nspecimen = "{spec}"\ncheckpoint_interval = "0.5 s"'))
         kill_after_checkpoint_then_resume(d, path, 4000)
+
+
+def plane_strain_frictionless_walls_carry_the_membrane_stress():
+    """With frictionless front and back walls and platens, the only lateral load on the specimen
+    is the membrane's: the lateral stress the particles carry (Love-Weber) must be the applied
+    confining pressure within 2 % on every row past 0.5 % axial strain (with the walls' and
+    platens' friction it is higher by the friction's share, which summary.json reports)."""
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "o")
+        path = os.path.join(d, "ps.toml")
+        config = PLANE_STRAIN.replace("max_axial_strain = 0.10", "max_axial_strain = 0.03")
+        for pair, mu in (('materials = ["glass", "rubber_membrane"]\nrestitution = 0.580\nfriction = ', "0.21"),
+                         ('materials = ["glass", "porous_stone"]\nrestitution = 0.730\nfriction = ', "0.18")):
+            assert pair + mu in config
+            config = config.replace(pair + mu, pair + "0.0")
+        open(path, "w").write(config)
+        r = run("run", path, "--out", out, "--quiet")
+        assert r.returncode == 0, r.stderr
+        late = [x for x in read_curve(os.path.join(out, "curve.csv")) if x["axial_strain"] > 0.005]
+        assert len(late) >= 10, len(late)
+        worst = 0.0
+        for x in late:
+            e = x["lateral_stress_particles_Pa"] / x["lateral_stress_membrane_Pa"] - 1
+            assert abs(e) < 0.02, (x["axial_strain"], e)
+            worst = max(worst, abs(e))
+        print(f"particles vs applied lateral stress: worst {100 * worst:.2f} % over {len(late)} rows")
+        s = json.load(open(os.path.join(out, "summary.json")))
+        assert abs(s["membrane"]["wall_friction_share_of_lateral_stress"]) < 1e-3, s["membrane"]
+
+
+def preparation_checkpoint_survives_kill():
+    """A run killed (SIGKILL) while it prepares its specimen, after a periodic preparation
+    checkpoint, resumes with grainlab run --resume and ends with the same specimen, curve and
+    summary as an uninterrupted run (the small plane strain specimen: affine compaction, then
+    the walls' hold, then the loading)."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "ps.toml")
+        open(path, "w").write(PLANE_STRAIN.replace("max_axial_strain = 0.10", 'max_axial_strain = 0.004\ncheckpoint_interval = "1 s"'))
+        a, b = kill_after_checkpoint_then_resume(d, path, 3000, "preparation.bin", 0.1)
+        assert open(os.path.join(a, "specimen.csv")).read() == open(os.path.join(b, "specimen.csv")).read(), "specimen differs"
 
 
 globals()[CHECK]()

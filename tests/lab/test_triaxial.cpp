@@ -5,6 +5,7 @@
 // (triaxial_small_specimen_shear).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lab/specimen.hpp"
@@ -52,6 +53,44 @@ TEST(SpecimenPreparation, SteeredFrictionHitsTargetSolidFraction) {
   EXPECT_TRUE(s.target_reached);
   EXPECT_NEAR(s.solid_fraction, 0.555, 0.005);
   EXPECT_TRUE(s.equilibrium_reached);
+}
+
+TEST(SpecimenPreparation, CompactionFrictionSteersTheDensityBothWays) {
+  // Compacted with less bead friction than the measured 0.16 the packing gets denser, with more
+  // it gets looser; every specimen ends in equilibrium with the measured friction switched on.
+  double solid_fraction[3];
+  const double compaction_friction[3] = {0.0, -1.0, 0.6};  // -1: the measured friction
+  for (int k = 0; k < 3; ++k) {
+    SpecimenSettings settings = small_specimen();
+    if (compaction_friction[k] >= 0) settings.compaction_friction = compaction_friction[k];
+    const Specimen s = prepare_cuboid_specimen(settings, reference_pairs(), nullptr);
+    EXPECT_TRUE(s.equilibrium_reached) << k;
+    EXPECT_DOUBLE_EQ(s.compaction_friction, k == 1 ? 0.16 : compaction_friction[k]);
+    solid_fraction[k] = s.solid_fraction;
+  }
+  EXPECT_GT(solid_fraction[0], solid_fraction[1] + 0.01);
+  EXPECT_LT(solid_fraction[2], solid_fraction[1] - 0.01);
+}
+
+TEST(SpecimenPreparation, FrictionlessWallsLeaveTheSpecimenIsotropic) {
+  // With frictionless walls the walls carry no shear, so the specimen's own (Love-Weber) stress
+  // is the walls' normal stress: the confining stress on every axis within the hold's 0.5 %
+  // (plus the unbalanced force's share). With the measured wall friction the preparation locks
+  // shear into the wall contacts and the axes differ by more.
+  double spread[2];
+  for (int walls = 0; walls < 2; ++walls) {
+    SpecimenSettings settings = small_specimen();
+    settings.wall_friction_while_preparing = walls == 1;
+    const Specimen s = prepare_cuboid_specimen(settings, reference_pairs(), nullptr);
+    ASSERT_TRUE(s.equilibrium_reached);
+    double lo = 1e300, hi = -1e300;
+    for (double sigma : s.love_weber_diagonal) lo = std::min(lo, sigma), hi = std::max(hi, sigma);
+    spread[walls] = (hi - lo) / settings.confining_stress;
+    if (walls == 0)
+      for (double sigma : s.love_weber_diagonal)
+        EXPECT_NEAR(sigma / settings.confining_stress, 1.0, 0.01);
+  }
+  EXPECT_GT(spread[1], 2.0 * spread[0]);
 }
 
 TEST(SpecimenPreparation, SavedSpecimenReloadsExactly) {

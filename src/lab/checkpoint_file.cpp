@@ -1,0 +1,48 @@
+#include "lab/checkpoint_file.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "io/config_error.hpp"
+#include "io/output_files.hpp"
+
+namespace grainlab {
+
+namespace {
+
+uint64_t checksum(std::string_view bytes) {  // FNV-1a
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
+  return h;
+}
+
+}  // namespace
+
+void write_sealed(StateWriter& out, const std::string& path) {
+  out.value(checksum(out.bytes()));
+  write_file_atomically(path, out.bytes());
+}
+
+std::string read_sealed(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(fmt::format("{}: no checkpoint to resume from", path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  std::string bytes = s.str();
+  uint64_t stored = 0;
+  if (bytes.size() < sizeof stored)
+    throw ConfigError(fmt::format("{}: damaged checkpoint (truncated)", path));
+  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
+  bytes.resize(bytes.size() - sizeof stored);
+  if (checksum(bytes) != stored)
+    throw ConfigError(fmt::format(
+        "{}: damaged checkpoint (checksum mismatch): it cannot be resumed; rerun the test", path));
+  return bytes;
+}
+
+}  // namespace grainlab
