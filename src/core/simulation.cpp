@@ -223,7 +223,8 @@ void write_walls(StateWriter& out, const std::vector<Wall>& walls) {
 }
 
 std::vector<Wall> read_walls(StateReader& in) {
-  std::vector<Wall> walls(in.value<uint64_t>());
+  // Each wall record holds at least its name's length and its numbers.
+  std::vector<Wall> walls(in.count(sizeof(uint64_t) + 10 * sizeof(Vec3)));
   for (Wall& w : walls) {
     w.name = in.text();
     w.shape = in.value<WallShape>(), w.material = in.value<int>(), w.point = in.value<Vec3>();

@@ -53,6 +53,14 @@ class StateReader {
     v.resize(n);
     std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
   }
+  // A record count, refused when the bytes left cannot hold that many records of at least
+  // `min_bytes_each` (a damaged count would otherwise allocate without bound).
+  uint64_t count(size_t min_bytes_each) {
+    const uint64_t n = value<uint64_t>();
+    if (n > (bytes_.size() - at_) / (min_bytes_each ? min_bytes_each : 1))
+      throw std::runtime_error("checkpoint truncated");
+    return n;
+  }
   std::string text() {
     const uint64_t n = value<uint64_t>();
     const char* p = take(n);

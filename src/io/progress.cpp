@@ -17,18 +17,29 @@ Progress::Progress(std::string label, bool quiet, double interval_s)
 
 void Progress::update(double fraction, const std::string& detail) {
   if (quiet_) return;
-  if (first_fraction_ < 0.0) first_fraction_ = fraction;
   const auto now = std::chrono::steady_clock::now();
+  if (first_fraction_ < 0.0) first_fraction_ = fraction, first_update_ = now;
   if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  // From this session's rate: a resumed run did the part before first_fraction_ earlier.
+  // From this session's rate since the first update: a resumed run did the part before
+  // first_fraction_ earlier.
   const double done = fraction - first_fraction_;
-  const double eta = done > 0.0 ? elapsed * (1.0 - fraction) / done : 0.0;
+  const double since_first = std::chrono::duration<double>(now - first_update_).count();
+  const double eta = done > 0.0 ? since_first * (1.0 - fraction) / done : 0.0;
   const std::string text = fmt::format("{}: {:5.1f} %  {}  elapsed {:.0f} s  ETA {:.0f} s", label_,
                                        100.0 * fraction, detail, elapsed, eta);
   if (tty_)
     fmt::print(stderr, "\r{:<100}", text);
+  else
+    fmt::print(stderr, "{}\n", text);
+  std::fflush(stderr);
+}
+
+void Progress::message(const std::string& text) {
+  if (quiet_) return;
+  if (tty_)
+    fmt::print(stderr, "\r{:<100}\n", text);
   else
     fmt::print(stderr, "{}\n", text);
   std::fflush(stderr);

@@ -13,12 +13,15 @@ class Progress {
   // fraction in [0, 1]; `detail` e.g. "t = 1.2e-3 s" or "axial strain 4.1 %".
   void update(double fraction, const std::string& detail);
   void finish(const std::string& detail);
+  // A line of its own (unless quiet), e.g. where a resumed run continues.
+  void message(const std::string& text);
 
  private:
   std::string label_;
   bool quiet_, tty_;
   double interval_s_;
   double first_fraction_ = -1.0;  // at the first update: a resumed run starts part-way
+  std::chrono::steady_clock::time_point first_update_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -13,18 +13,14 @@
 
 namespace grainlab {
 
-namespace {
-
-uint64_t checksum(std::string_view bytes) {  // FNV-1a
+uint64_t checkpoint_checksum(std::string_view bytes) {  // FNV-1a
   uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
   return h;
 }
 
-}  // namespace
-
 void write_sealed(StateWriter& out, const std::string& path) {
-  out.value(checksum(out.bytes()));
+  out.value(checkpoint_checksum(out.bytes()));
   write_file_atomically(path, out.bytes());
 }
 
@@ -39,7 +35,7 @@ std::string read_sealed(const std::string& path) {
     throw ConfigError(fmt::format("{}: damaged checkpoint (truncated)", path));
   std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
   bytes.resize(bytes.size() - sizeof stored);
-  if (checksum(bytes) != stored)
+  if (checkpoint_checksum(bytes) != stored)
     throw ConfigError(fmt::format(
         "{}: damaged checkpoint (checksum mismatch): it cannot be resumed; rerun the test", path));
   return bytes;

@@ -4,11 +4,16 @@
 // different result.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "core/state_io.hpp"
 
 namespace grainlab {
+
+// The checksum that seals a checkpoint's bytes (FNV-1a, 64 bit).
+uint64_t checkpoint_checksum(std::string_view bytes);
 
 // Appends the checksum to `out` and writes it to `path` atomically.
 void write_sealed(StateWriter& out, const std::string& path);

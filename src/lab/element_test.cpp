@@ -363,7 +363,8 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   j["re_equilibration"] = {{"unbalanced_force_ratio", held.unbalanced},
                            {"max_wall_stress_error", held.max_stress_error},
                            {"reached", held.reached}};
-  j["preparation_wall_time_s"] =
+  j["preparation_wall_time_s"] =  // with the sessions before a resumed preparation
+      specimen.earlier_wall_time +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   run.run_info = j.dump();
   return run;
@@ -433,6 +434,8 @@ void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
   std::filesystem::rename(dir + "/curve.csv.partial", dir + "/curve.csv");
   std::error_code ec;
   std::filesystem::remove(dir + "/checkpoint.bin", ec);
+  // A finished run has nothing to resume: --resume on it is refused, not a rerun.
+  std::filesystem::remove(dir + "/preparation.bin", ec);
 }
 
 }  // namespace grainlab

@@ -253,6 +253,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   st.stage = s.compaction == Compaction::affine ? PrepStage::compacting : PrepStage::holding;
   st.stage_end = s.max_time;
   std::optional<Simulation> resumed;
+  double earlier_wall_time = 0.0;
   if (checkpoints && checkpoints->resume) {
     // Continue from the last checkpoint: the stage, the steering and the controllers' state,
     // and the simulation with the contact table it had then.
@@ -262,8 +263,16 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
         throw std::runtime_error("not a grainlab preparation checkpoint");
       for (int k = 0; k < 3; ++k) in.text();  // type, config path and text (peeked before)
       st = in.value<PrepState>();
+      earlier_wall_time = st.wall_time_before;
       resumed.emplace(in, st.friction_restored ? measured_friction : table);
       if (!in.at_end()) throw std::runtime_error("trailing data");
+      if (progress)
+        progress->message(
+            fmt::format("resuming the preparation from {} at t = {:.4g} s simulated ({})",
+                        checkpoints->path, resumed->time(),
+                        st.stage == PrepStage::compacting
+                            ? "compacting"
+                            : (st.stage == PrepStage::holding ? "holding" : "done")));
     } catch (const std::runtime_error& e) {
       throw ConfigError(fmt::format("{}: damaged checkpoint ({})", checkpoints->path, e.what()));
     }
@@ -306,6 +315,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
         state.max_stress_error < s.stress_tolerance && state.unbalanced < s.unbalanced_tolerance;
     const bool at_target =
         s.target_solid_fraction && state.solid_fraction >= *s.target_solid_fraction;
+    bool switched = false;
     if (!st.friction_restored && (at_target || settled)) {
       // Target reached, or the packing settled (below the target: it cannot get denser at this
       // stress and friction, so the target is out of reach, reported).
@@ -313,13 +323,14 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
         st.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
       sim.set_pair_table(measured_friction);
       st.friction_restored = true;
+      switched = true;  // not a stop yet: the packing must come to rest with the measured friction
     }
     if (progress)
       progress->update(
           std::min(1.0, sim.time() / s.max_time),
           fmt::format("{}: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}", stage,
                       state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
-    return st.friction_restored;
+    return st.friction_restored && !switched;
   };
   const HoldCriteria criteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
                               s.unbalanced_tolerance, s.max_time};
@@ -353,8 +364,12 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
     st.stage = PrepStage::done;
     save();  // a resume after this point goes straight to the specimen
   }
+  if (s.target_solid_fraction && !st.friction_restored)  // ran out of time before either
+    st.target_reached = solid_fraction(sim.particles(), box_volume(sim.walls())) >=
+                        *s.target_solid_fraction - 0.005;
   out.target_reached = st.target_reached;
   out.equilibrium_reached = st.held.reached;
+  out.earlier_wall_time = earlier_wall_time;
   out.low = box_low(sim.walls());
   out.high = box_high(sim.walls());
   out.solid_fraction = solid_fraction(sim.particles(), box_volume(sim.walls()));

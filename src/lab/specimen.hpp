@@ -43,10 +43,6 @@ struct SpecimenSettings {
   // false: the walls are frictionless for the whole preparation (no shear locked into the wall
   // contacts, so the specimen starts isotropic); their measured friction acts only in the test.
   bool wall_friction_while_preparing = true;
-  // Love-Weber average stress at the end of the preparation (Pa, compression positive): equal to
-  // the confining stress on every axis when the specimen is isotropic; unknown (zero) for a
-  // specimen read from a file, which carries no contact forces.
-  std::array<double, 3> love_weber_diagonal{};
   int bead_material = 0, lateral_material = 0, platen_material = 0;
   double density = 2500.0;  // kg/m^3
   double dt_fraction = 0.1;
@@ -86,6 +82,7 @@ struct Specimen {
   // the confining stress on every axis when the specimen is isotropic; unknown (zero) for a
   // specimen read from a file, which carries no contact forces.
   std::array<double, 3> love_weber_diagonal{};
+  double earlier_wall_time = 0.0;  // s, the preparation's sessions before a resume
   double compaction_restitution = 0.0;
   bool equilibrium_reached = false;
   bool target_reached = true;   // false: the target solid fraction was out of reach

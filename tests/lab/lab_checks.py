@@ -171,8 +171,8 @@ def triaxial_interrupt_and_resume():
 
 def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin", linger=0.3):
     """Runs `path` twice: once through, once killed (SIGKILL) `linger` s after its first periodic
-    `checkpoint` file appeared and resumed; both must give the same curve and summary. Returns the
-    two output directories."""
+    `checkpoint` file appeared and resumed; both must give the same curve and summary, and the
+    finished run cannot be resumed again. Returns the two output directories."""
     import time
     a, b = os.path.join(d, "a"), os.path.join(d, "b")
     assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
@@ -187,9 +187,16 @@ def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin
     assert os.path.exists(os.path.join(b, checkpoint)), f"a periodic {checkpoint} must exist"
     if checkpoint == "preparation.bin":
         assert not os.path.exists(os.path.join(b, "specimen.csv")), "killed after the preparation"
-    r = run("run", "--resume", b, "--quiet", "--threads", "2")
+        r = run("run", "--resume", b, "--threads", "2")  # not quiet: it says where it resumes
+        assert "resuming the preparation from" in r.stderr, r.stderr
+    else:
+        r = run("run", "--resume", b, "--quiet", "--threads", "2")
     assert r.returncode == 0, r.stderr
     compare_runs(a, b)
+    # A finished run leaves nothing to resume: --resume is refused, never a silent rerun.
+    assert not os.path.exists(os.path.join(b, "preparation.bin"))
+    r = run("run", "--resume", b, "--quiet")
+    assert r.returncode == 2, (r.returncode, r.stderr)
     return a, b
 
 
@@ -503,7 +510,7 @@ PLANE_STRAIN = open(os.path.join(SRC, "examples/plane_strain/small.toml")).read(
 
 def plane_strain_small_specimen_shear():
     """examples/plane_strain/small.toml end to end: the lateral stress the particles carry
-    (Love-Weber) agrees with the boundary's (membrane + fixed walls) within 2 % on every row past
+    (Love-Weber) agrees with the boundary's (membrane + wall and platen contacts) within 2 % on every row past
     0.5 % axial strain; the strain through the thickness is exactly zero; no bead escapes; the
     membrane's applied stress is the confining stress; the curve rises to a peak above the
     confining stress and falls after it; the band is found and drawn; the VTK snapshots carry the

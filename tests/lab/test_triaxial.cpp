@@ -58,8 +58,10 @@ TEST(SpecimenPreparation, SteeredFrictionHitsTargetSolidFraction) {
 TEST(SpecimenPreparation, CompactionFrictionSteersTheDensityBothWays) {
   // Compacted with less bead friction than the measured 0.16 the packing gets denser, with more
   // it gets looser; every specimen ends in equilibrium with the measured friction switched on.
+  // (The loose packing settles further once its friction drops to 0.16: compacted at 0.6 it
+  // ended 0.008 below the measured friction's specimen in this box, at 1.0 further.)
   double solid_fraction[3];
-  const double compaction_friction[3] = {0.0, -1.0, 0.6};  // -1: the measured friction
+  const double compaction_friction[3] = {0.0, -1.0, 1.0};  // -1: the measured friction
   for (int k = 0; k < 3; ++k) {
     SpecimenSettings settings = small_specimen();
     if (compaction_friction[k] >= 0) settings.compaction_friction = compaction_friction[k];
