@@ -41,4 +41,26 @@ std::string read_sealed(const std::string& path) {
   return bytes;
 }
 
+void write_checkpoint_header(StateWriter& out, uint64_t magic, const CheckpointHeader& header) {
+  out.value(magic);
+  out.text(header.type);
+  out.text(header.config_path);
+  out.text(header.config_text);
+}
+
+StateReader open_checkpoint(const std::string& path, uint64_t magic, const char* kind,
+                            CheckpointHeader& header) {
+  StateReader in(read_sealed(path));
+  try {
+    if (in.value<uint64_t>() != magic)
+      throw std::runtime_error(fmt::format("not a grainlab {}", kind));
+    header.type = in.text();
+    header.config_path = in.text();
+    header.config_text = in.text();
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
+  }
+  return in;
+}
+
 }  // namespace grainlab

@@ -22,4 +22,15 @@ void write_sealed(StateWriter& out, const std::string& path);
 // missing, truncated or damaged.
 std::string read_sealed(const std::string& path);
 
+// What every checkpoint starts with, after its kind's magic number: the test type and the config
+// (path and text) the run was started from, so that a resume needs nothing but the file.
+struct CheckpointHeader {
+  std::string type, config_path, config_text;
+};
+void write_checkpoint_header(StateWriter& out, uint64_t magic, const CheckpointHeader& header);
+// The sealed file verified and its header read into `header`; the reader continues after it.
+// ConfigError naming the file when it is missing, damaged or not a `kind` (its magic number).
+StateReader open_checkpoint(const std::string& path, uint64_t magic, const char* kind,
+                            CheckpointHeader& header);
+
 }  // namespace grainlab

@@ -19,15 +19,13 @@ namespace grainlab {
 namespace {
 
 constexpr uint64_t checkpoint_magic = 0x67726e6c656c7432;  // "grnlelt2"
+constexpr const char* checkpoint_kind = "element-test checkpoint";
 
 }  // namespace
 
 void save_checkpoint(const ElementRun& run, const std::string& path) {
   StateWriter out;
-  out.value(checkpoint_magic);
-  out.text(run.type);
-  out.text(run.config_path);
-  out.text(run.config_text);
+  write_checkpoint_header(out, checkpoint_magic, {run.type, run.config_path, run.config_text});
   out.text(run.run_info);
   out.text(run.curve_rows);
   out.text(run.vtk_index);
@@ -37,33 +35,23 @@ void save_checkpoint(const ElementRun& run, const std::string& path) {
   write_sealed(out, path);
 }
 
-void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
-                     std::string& config_text) {
-  StateReader in(read_sealed(path));
-  try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab element-test checkpoint");
-    type = in.text();
-    config_path = in.text();
-    config_text = in.text();
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: {}", path, e.what()));
-  }
+CheckpointHeader peek_checkpoint(const std::string& path) {
+  CheckpointHeader header;
+  open_checkpoint(path, checkpoint_magic, checkpoint_kind, header);
+  return header;
 }
 
 ElementRun load_checkpoint(const std::string& path, PairTable table) {
-  StateReader in(read_sealed(path));
+  CheckpointHeader h;
+  StateReader in = open_checkpoint(path, checkpoint_magic, checkpoint_kind, h);
   try {
-    if (in.value<uint64_t>() != checkpoint_magic)
-      throw std::runtime_error("not a grainlab element-test checkpoint");
-    std::string type = in.text(), config_path = in.text(), config_text = in.text();
     std::string info = in.text(), rows = in.text(), vtk = in.text(), state = in.text();
     const double wall_time_before = in.value<double>();
     Simulation sim(in, std::move(table));
     if (!in.at_end()) throw std::runtime_error("trailing data");
-    return ElementRun{std::move(sim),         std::move(type),  std::move(config_path),
-                      std::move(config_text), std::move(info),  std::move(rows),
-                      std::move(vtk),         std::move(state), wall_time_before};
+    return ElementRun{std::move(sim),           std::move(h.type), std::move(h.config_path),
+                      std::move(h.config_text), std::move(info),   std::move(rows),
+                      std::move(vtk),           std::move(state),  wall_time_before};
   } catch (const std::runtime_error& e) {
     throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
   }

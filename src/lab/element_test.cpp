@@ -179,8 +179,7 @@ nlohmann::json specimen_json(const Specimen& s) {
       {"compaction_friction", s.compaction_friction},
       {"wall_friction_while_preparing", s.wall_friction_while_preparing},
       {"love_weber_stress_diagonal_Pa",  // null: read from a file (no contact forces)
-       s.love_weber_diagonal == std::array<double, 3>{} ? nlohmann::json(nullptr)
-                                                        : nlohmann::json(s.love_weber_diagonal)},
+       s.love_weber_diagonal ? nlohmann::json(*s.love_weber_diagonal) : nlohmann::json(nullptr)},
       {"compaction_restitution", s.compaction_restitution},
       {"equilibrium_reached", s.equilibrium_reached},
       {"target_solid_fraction_reached", s.target_reached},
@@ -315,9 +314,10 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   // The preparation checkpoints every checkpoint_interval (preparation.bin), and a resumed run
   // continues it with the config text stored there.
   const std::string config_text = resumed_config.empty() ? read_text(path) : resumed_config;
-  const PreparationCheckpoints checkpoints{
-      out_dir + "/preparation.bin", s.checkpoint_interval, type, path, config_text,
-      !resumed_config.empty()};
+  const PreparationCheckpoints checkpoints{out_dir + "/preparation.bin",
+                                           s.checkpoint_interval,
+                                           {type, path, config_text},
+                                           !resumed_config.empty()};
   const Specimen specimen = obtain_specimen(c, progress, &checkpoints);
   if (!s.specimen_file) save_specimen(out_dir + "/specimen.csv", specimen);
   const ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);

@@ -193,8 +193,7 @@ void load_to_end(ElementRun& run, LoadingStage& stage, double checkpoint_interva
 
 void save_checkpoint(const ElementRun& run, const std::string& path);
 // The test type and config stored in a checkpoint (to rebuild the pair table before loading it).
-void peek_checkpoint(const std::string& path, std::string& type, std::string& config_path,
-                     std::string& config_text);
+CheckpointHeader peek_checkpoint(const std::string& path);
 // Throws ConfigError for a missing or damaged checkpoint.
 ElementRun load_checkpoint(const std::string& path, PairTable table);
 

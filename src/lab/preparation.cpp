@@ -69,11 +69,10 @@ Placement place_on_jittered_lattice(const SpecimenSettings& s) {
   return p;
 }
 
-// Contact constants while compacting: friction mu (< 0: the measured one) and restitution e
-// (< 0: the measured one). Only the packing's final static state is kept, which does not
-// depend on e, so compaction may dissipate faster than the beads do.
 // The contacts while preparing: bead-bead friction `bead_friction`, bead-wall friction at most
-// `wall_friction`, restitution at most `e` (each < 0: the measured value).
+// `wall_friction`, restitution at most `e` (each < 0: the measured value). Only the packing's
+// final static state is kept, which does not depend on e, so compaction may dissipate faster
+// than the beads do.
 void set_compaction_contacts(PairTable& table, const PairTable& original, const SpecimenSettings& s,
                              double bead_friction, double wall_friction, double e) {
   for (int other : {s.bead_material, s.lateral_material, s.platen_material}) {
@@ -110,6 +109,7 @@ HoldState measure_hold_state(const Simulation& sim, double confining_stress) {
 }
 
 constexpr uint64_t preparation_magic = 0x67726e6c70726570;  // "grnlprep"
+constexpr const char* preparation_kind = "preparation checkpoint";
 
 // Where a preparation stands: what a checkpoint holds besides the Simulation.
 enum class PrepStage : int32_t { compacting = 0, holding = 1, done = 2 };
@@ -127,10 +127,7 @@ struct PrepState {
 void save_preparation(const PreparationCheckpoints& cp, const PrepState& st,
                       const Simulation& sim) {
   StateWriter out;
-  out.value(preparation_magic);
-  out.text(cp.type);
-  out.text(cp.config_path);
-  out.text(cp.config_text);
+  write_checkpoint_header(out, preparation_magic, cp.header);
   out.value(st);
   sim.save_state(out);
   write_sealed(out, cp.path);
@@ -189,18 +186,10 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& c,
   return hold_loop(sim, servo, c, sim.time() + c.max_time, on_check, [] {});
 }
 
-void peek_preparation_checkpoint(const std::string& path, std::string& type,
-                                 std::string& config_path, std::string& config_text) {
-  StateReader in(read_sealed(path));
-  try {
-    if (in.value<uint64_t>() != preparation_magic)
-      throw std::runtime_error("not a grainlab preparation checkpoint");
-    type = in.text();
-    config_path = in.text();
-    config_text = in.text();
-  } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: {}", path, e.what()));
-  }
+CheckpointHeader peek_preparation_checkpoint(const std::string& path) {
+  CheckpointHeader header;
+  open_checkpoint(path, preparation_magic, preparation_kind, header);
+  return header;
 }
 
 Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Progress* progress,
@@ -257,11 +246,10 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   if (checkpoints && checkpoints->resume) {
     // Continue from the last checkpoint: the stage, the steering and the controllers' state,
     // and the simulation with the contact table it had then.
-    StateReader in(read_sealed(checkpoints->path));
+    CheckpointHeader header;  // read before, to find the config
+    StateReader in =
+        open_checkpoint(checkpoints->path, preparation_magic, preparation_kind, header);
     try {
-      if (in.value<uint64_t>() != preparation_magic)
-        throw std::runtime_error("not a grainlab preparation checkpoint");
-      for (int k = 0; k < 3; ++k) in.text();  // type, config path and text (peeked before)
       st = in.value<PrepState>();
       earlier_wall_time = st.wall_time_before;
       resumed.emplace(in, st.friction_restored ? measured_friction : table);
@@ -376,7 +364,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   out.coordination_number = coordination_number(sim);
   out.unbalanced_force_ratio = unbalanced_force_ratio(sim);
   const Tensor3 lw = love_weber_stress(sim, box_volume(sim.walls()));
-  out.love_weber_diagonal = {lw[0][0], lw[1][1], lw[2][2]};
+  out.love_weber_diagonal = std::array<double, 3>{lw[0][0], lw[1][1], lw[2][2]};
   out.max_stress_error = st.held.max_stress_error;
   out.simulated_time = sim.time();
   // Particles in id order, at rest (velocities dropped: the specimen is in equilibrium).

@@ -70,40 +70,41 @@ void run_lab_test(const std::string& path, const toml::table& root, const RunOpt
   entry_for(path, root).run(path, root, options);
 }
 
+namespace {
+
+// The config a checkpoint holds, parsed; ConfigError naming the checkpoint when it does not.
+toml::table stored_config(const std::string& file, const CheckpointHeader& h) {
+  try {
+    return toml::parse(h.config_text, h.config_path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(
+        fmt::format("{}: the stored configuration does not parse: {}", file, e.description()));
+  }
+}
+
+}  // namespace
+
 void resume_lab_test(const RunOptions& options) {
   const std::string checkpoint = options.out_dir + "/checkpoint.bin";
   const std::string preparation = options.out_dir + "/preparation.bin";
-  std::string type, path, text;
   if (!std::filesystem::exists(checkpoint) && std::filesystem::exists(preparation)) {
     // Killed before the loading's first checkpoint: the preparation continues, then the run.
-    peek_preparation_checkpoint(preparation, type, path, text);
-    toml::table root;
-    try {
-      root = toml::parse(text, path);
-    } catch (const toml::parse_error& e) {
-      throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", preparation,
-                                    e.description()));
-    }
-    const LabTestEntry& e = entry_for(path, root);
-    if (type != e.type || !e.element_config)
-      throw ConfigError(fmt::format("{}: a {} preparation cannot be resumed", preparation, type));
+    const CheckpointHeader h = peek_preparation_checkpoint(preparation);
+    const toml::table root = stored_config(preparation, h);
+    const LabTestEntry& e = entry_for(h.config_path, root);
+    if (h.type != e.type || !e.element_config)
+      throw ConfigError(fmt::format("{}: a {} preparation cannot be resumed", preparation, h.type));
     RunOptions resumed = options;
-    resumed.resumed_preparation_config = text;
-    e.run(path, root, resumed);
+    resumed.resumed_preparation_config = h.config_text;
+    e.run(h.config_path, root, resumed);
     return;
   }
-  peek_checkpoint(checkpoint, type, path, text);
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(fmt::format("{}: the stored configuration does not parse: {}", checkpoint,
-                                  e.description()));
-  }
-  const LabTestEntry& e = entry_for(path, root);
-  if (type != e.type || !e.resume)
-    throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, type));
-  const ElementTestConfig c = e.element_config(path, root);
+  const CheckpointHeader h = peek_checkpoint(checkpoint);
+  const toml::table root = stored_config(checkpoint, h);
+  const LabTestEntry& e = entry_for(h.config_path, root);
+  if (h.type != e.type || !e.resume)
+    throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, h.type));
+  const ElementTestConfig c = e.element_config(h.config_path, root);
   install_interrupt_handler();
   continue_in_output_dir(options.out_dir);
   e.resume(load_checkpoint(checkpoint, c.table), root, options);

@@ -19,6 +19,7 @@
 #include "contact/stability.hpp"
 #include "core/particles.hpp"
 #include "core/simulation.hpp"
+#include "lab/checkpoint_file.hpp"
 
 namespace grainlab {
 
@@ -79,9 +80,9 @@ struct Specimen {
   double compaction_friction = 0.0;  // bead-bead friction used while compacting
   bool wall_friction_while_preparing = true;
   // Love-Weber average stress at the end of the preparation (Pa, compression positive): equal to
-  // the confining stress on every axis when the specimen is isotropic; unknown (zero) for a
-  // specimen read from a file, which carries no contact forces.
-  std::array<double, 3> love_weber_diagonal{};
+  // the confining stress on every axis when the specimen is isotropic; none for a specimen read
+  // from a file, which carries no contact forces.
+  std::optional<std::array<double, 3>> love_weber_diagonal;
   double earlier_wall_time = 0.0;  // s, the preparation's sessions before a resume
   double compaction_restitution = 0.0;
   bool equilibrium_reached = false;
@@ -117,7 +118,7 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& criteria,
 struct PreparationCheckpoints {
   std::string path;
   double interval_s = 600.0;
-  std::string type, config_path, config_text;
+  CheckpointHeader header;  // test type and config
   bool resume = false;
 };
 
@@ -125,8 +126,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
                                  const PreparationCheckpoints* checkpoints = nullptr);
 
 // The test type and config stored in a preparation checkpoint; ConfigError if it is damaged.
-void peek_preparation_checkpoint(const std::string& path, std::string& type,
-                                 std::string& config_path, std::string& config_text);
+CheckpointHeader peek_preparation_checkpoint(const std::string& path);
 
 // Exactly reloadable text form (17 significant digits): one header line with the box, then
 // id,material,radius,x,y,z per particle.

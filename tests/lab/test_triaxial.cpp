@@ -85,11 +85,12 @@ TEST(SpecimenPreparation, FrictionlessWallsLeaveTheSpecimenIsotropic) {
     settings.wall_friction_while_preparing = walls == 1;
     const Specimen s = prepare_cuboid_specimen(settings, reference_pairs(), nullptr);
     ASSERT_TRUE(s.equilibrium_reached);
+    ASSERT_TRUE(s.love_weber_diagonal);
     double lo = 1e300, hi = -1e300;
-    for (double sigma : s.love_weber_diagonal) lo = std::min(lo, sigma), hi = std::max(hi, sigma);
+    for (double sigma : *s.love_weber_diagonal) lo = std::min(lo, sigma), hi = std::max(hi, sigma);
     spread[walls] = (hi - lo) / settings.confining_stress;
     if (walls == 0)
-      for (double sigma : s.love_weber_diagonal)
+      for (double sigma : *s.love_weber_diagonal)
         EXPECT_NEAR(sigma / settings.confining_stress, 1.0, 0.01);
   }
   EXPECT_GT(spread[1], 2.0 * spread[0]);
