@@ -53,9 +53,9 @@ void PlaneStrainControl::before_step(Simulation& sim) {
         break;
       case AxisMode::stress: {
         StressServo& servo = servos_[k];
-        servo.set_target(a.stress);
-        servo.set_max_speed(max_strain_rate_ * 0.5 * size[1 + k / 2]);
         const double area = k < bottom_platen ? size.x * size.z : size.x * size.y;
+        servo.set_target(a.stress + (k == bottom_platen ? bottom_platen_load_ / area : 0.0));
+        servo.set_max_speed(max_strain_rate_ * 0.5 * size[1 + k / 2]);
         const double inward =
             servo.update(plane_strain_wall_stress(sim, box, k), area, w.contact_stiffness, dt);
         sim.set_wall_velocity(k, inward * w.normal);

@@ -44,6 +44,9 @@ class PlaneStrainControl : public StepListener {
                      ServoRegime regime, double max_strain_rate);
   void before_step(Simulation& sim) override;
   void set_axis(int k, const AxisControl& c) { axes_[k] = c; }
+  // The specimen's weight (N) under gravity along -z: a stress-held bottom platen is held at the
+  // axis stress plus weight / area, so that a specimen at rest has the axis stress on top.
+  void set_bottom_platen_load(double weight) { bottom_platen_load_ = weight; }
   std::array<double, 4> integrals() const;
   void set_integrals(const std::array<double, 4>& v);
 
@@ -51,6 +54,7 @@ class PlaneStrainControl : public StepListener {
   const Membrane& membrane_;
   std::array<AxisControl, 2> axes_;
   double max_strain_rate_;
+  double bottom_platen_load_ = 0.0;  // N
   std::array<StressServo, 4> servos_;
 };
 

@@ -136,6 +136,10 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
   s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
   if (!(s.checkpoint_interval > 0))
     t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
+  s.re_equilibration_max_time =
+      t.number_or("re_equilibration_max_time", Quantity::time, s.re_equilibration_max_time);
+  if (!(s.re_equilibration_max_time > 0 && s.re_equilibration_max_time <= 100))
+    t.fail("re_equilibration_max_time", "expected a simulated time in (0, 100] s");
   s.vtk = t.boolean_or("vtk", false);
   s.vtk_strain_interval =
       t.number_or("vtk_strain_interval", Quantity::dimensionless, s.vtk_strain_interval);
@@ -320,7 +324,8 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
                                            !resumed_config.empty()};
   const Specimen specimen = obtain_specimen(c, progress, &checkpoints);
   if (!s.specimen_file) save_specimen(out_dir + "/specimen.csv", specimen);
-  const ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);
+  ElementTimeStep step = element_time_step(sp, c.table, specimen.particles);
+  step.settings.gravity = {0.0, 0.0, -s.gravity};
   ElementRun run{Simulation(specimen.particles,
                             mount.walls ? mount.walls(specimen)
                                         : cuboid_walls(specimen.low, specimen.high,
@@ -337,12 +342,13 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
                                 100 * state.max_stress_error, state.unbalanced));
     return true;
   };
-  const HoldState held = mount.equilibrate
-                             ? mount.equilibrate(run.sim, on_check)
-                             : hold_isotropic(run.sim,
-                                              HoldCriteria{sp.confining_stress, sp.max_strain_rate,
-                                                           sp.stress_tolerance, 1e-3, 0.02},
-                                              on_check);
+  const HoldState held =
+      mount.equilibrate
+          ? mount.equilibrate(run.sim, on_check)
+          : hold_isotropic(run.sim,
+                           HoldCriteria{sp.confining_stress, sp.max_strain_rate,
+                                        sp.stress_tolerance, 1e-3, s.re_equilibration_max_time},
+                           on_check);
   nlohmann::json j = summary_header(path, &root);
   j["specimen"] = specimen_json(specimen);
   j["specimen"]["source"] =

@@ -41,6 +41,11 @@ struct ElementTestSettings {
   bool vtk = false;
   double vtk_strain_interval = 0.01;
   double checkpoint_interval = 300.0;  // s of wall time between checkpoints
+  // s simulated, at most, for the re-equilibration under the confining stress before the loading
+  double re_equilibration_max_time = 0.02;
+  // m/s^2 along -z from the re-equilibration on (the specimen is prepared without it); only the
+  // plane strain test reads the key, whose mount carries the weight on the bottom platen
+  double gravity = 0.0;
 };
 
 // A test config read: materials and pairs, the pair table and the shared settings.

@@ -3,9 +3,10 @@
 // lateral faces (x) held at the confining stress by a flexible membrane on the outermost beads
 // (control/membrane.hpp), the front and back walls (y) fixed so that the strain through the
 // thickness is zero, and the platens (z) driven at the fastest rate with inertial number I below
-// the bound (or a given speed), no gravity, to 15 % axial strain. Results: the curve (stresses
-// from the boundary and from the particles), peak, friction and dilatancy angles, membrane error,
-// escaped beads, and the shear band (lab/plane_strain_band.hpp).
+// the bound (or a given speed), to 15 % axial strain; without gravity unless test.gravity is given
+// (then from the re-equilibration on, the bottom platen carrying the weight). Results: the curve
+// (stresses from the boundary and from the particles), peak, friction and dilatancy angles,
+// membrane error, escaped beads, and the shear band (lab/plane_strain_band.hpp).
 #pragma once
 
 #include <toml++/toml.h>
@@ -23,7 +24,10 @@ struct PlaneStrainConfig : ElementTestConfig {
 
 // The plane strain box's walls for a prepared specimen, its re-equilibration under the membrane at
 // the confining stress, and its volume (lab/element_test.hpp).
-SpecimenMount plane_strain_mount(const SpecimenSettings& sp);
+SpecimenMount plane_strain_mount(const ElementTestSettings& s);
+
+// The weight of the particles (N) under the simulation's gravity along -z.
+double specimen_weight(const Simulation& sim);
 
 PlaneStrainConfig read_plane_strain_config(const std::string& path, const toml::table& root);
 void run_plane_strain(const std::string& path, const toml::table& root, const RunOptions& options);

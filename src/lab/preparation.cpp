@@ -108,7 +108,9 @@ HoldState measure_hold_state(const Simulation& sim, double confining_stress) {
   return state;
 }
 
-constexpr uint64_t preparation_magic = 0x67726e6c70726570;  // "grnlprep"
+// "grnlpre2": the second layout of PrepState (the compaction plateau); a file of the first is
+// refused as not a preparation checkpoint.
+constexpr uint64_t preparation_magic = 0x67726e6c70726532;
 constexpr const char* preparation_kind = "preparation checkpoint";
 
 // Where a preparation stands: what a checkpoint holds besides the Simulation.
@@ -122,7 +124,21 @@ struct PrepState {
   std::array<double, 6> integrals{};  // the walls' servo integrals while holding, m/s
   double wall_time_before = 0.0;      // s, earlier sessions
   HoldState held;                     // the hold's last check (stage done)
+  // The compaction plateau: the solid fraction the packing has stayed within
+  // plateau_solid_fraction_band of for plateau_checks checks in a row.
+  double plateau_solid_fraction = 0.0;
+  int32_t plateau_checks = 0;
 };
+
+// A steered compaction has packed when its solid fraction has stayed within this band for
+// plateau_checks_to_switch checks (200 steps each) with the wall stresses within
+// plateau_stress_error of the target. A frictionless or very frictional packing can take far
+// longer than that to meet the hold's unbalanced-force criterion (1e-4): near jamming the walls'
+// servo keeps it breathing (unbalanced 0.02-0.08 at a constant solid fraction), but its density,
+// which is all the compaction friction steers, no longer changes.
+constexpr double plateau_solid_fraction_band = 2e-4;
+constexpr int plateau_checks_to_switch = 25;
+constexpr double plateau_stress_error = 0.10;
 
 void save_preparation(const PreparationCheckpoints& cp, const PrepState& st,
                       const Simulation& sim) {
@@ -303,10 +319,18 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
         state.max_stress_error < s.stress_tolerance && state.unbalanced < s.unbalanced_tolerance;
     const bool at_target =
         s.target_solid_fraction && state.solid_fraction >= *s.target_solid_fraction;
+    if (std::abs(state.solid_fraction - st.plateau_solid_fraction) > plateau_solid_fraction_band) {
+      st.plateau_solid_fraction = state.solid_fraction;
+      st.plateau_checks = 0;
+    } else {
+      ++st.plateau_checks;
+    }
+    const bool packed = st.plateau_checks >= plateau_checks_to_switch &&
+                        state.max_stress_error < plateau_stress_error;
     bool switched = false;
-    if (!st.friction_restored && (at_target || settled)) {
-      // Target reached, or the packing settled (below the target: it cannot get denser at this
-      // stress and friction, so the target is out of reach, reported).
+    if (!st.friction_restored && (at_target || settled || packed)) {
+      // Target reached, or the packing settled or stopped compacting (below the target: it
+      // cannot get denser at this stress and friction, so the target is out of reach, reported).
       if (s.target_solid_fraction)
         st.target_reached = state.solid_fraction >= *s.target_solid_fraction - 0.005;
       sim.set_pair_table(measured_friction);

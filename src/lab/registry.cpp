@@ -13,6 +13,7 @@
 #include "lab/lab_test.hpp"
 #include "lab/oedometer.hpp"
 #include "lab/plane_strain.hpp"
+#include "lab/scale_study.hpp"
 #include "lab/sliding_friction.hpp"
 #include "lab/triaxial.hpp"
 
@@ -41,6 +42,10 @@ const std::vector<LabTestEntry>& lab_tests() {
        "and a map of the shear band",
        run_plane_strain, element_config<PlaneStrainConfig, read_plane_strain_config>,
        resume_plane_strain},
+      {"scale_study",
+       "the plane strain test repeated with the bead diameter and the model scaled together, "
+       "with gravity off and on (each run resumable in its own subdirectory)",
+       run_scale_study},
   };
   return table;
 }
@@ -85,6 +90,10 @@ toml::table stored_config(const std::string& file, const CheckpointHeader& h) {
 }  // namespace
 
 void resume_lab_test(const RunOptions& options) {
+  if (is_scale_study_dir(options.out_dir)) {
+    resume_scale_study(options);
+    return;
+  }
   const std::string checkpoint = options.out_dir + "/checkpoint.bin";
   const std::string preparation = options.out_dir + "/preparation.bin";
   if (!std::filesystem::exists(checkpoint) && std::filesystem::exists(preparation)) {

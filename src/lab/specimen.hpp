@@ -38,7 +38,8 @@ struct SpecimenSettings {
   double confining_stress = 150e3;              // Pa
   std::optional<double> target_solid_fraction;  // steer the compaction friction to hit it
   // Bead-bead friction while compacting: below the measured one packs denser, above it looser
-  // (the measured friction is switched on at the target, or once the packing has settled).
+  // (the measured friction is switched on at the target, or once the packing has settled or its
+  // solid fraction has stopped changing).
   // Unset: 0 with a target solid fraction, else the measured friction.
   std::optional<double> compaction_friction;
   // false: the walls are frictionless for the whole preparation (no shear locked into the wall

@@ -30,13 +30,14 @@ PairTable reference_pairs() {
 }  // namespace
 
 TEST(Membrane, HoldsAStaticSpecimenAtTheIsotropicConfiningStress) {
-  SpecimenSettings sp;
+  ElementTestSettings settings_of_test;
+  SpecimenSettings& sp = settings_of_test.specimen;
   sp.count = 800;
   sp.nominal_box = {0.016, 0.016, 0.020};
   sp.bead_material = 0, sp.lateral_material = 1, sp.platen_material = 2;
   const PairTable table = reference_pairs();
   const Specimen specimen = prepare_cuboid_specimen(sp, table, nullptr);
-  const SpecimenMount mount = plane_strain_mount(sp);
+  const SpecimenMount mount = plane_strain_mount(settings_of_test);
   SimulationSettings settings;
   settings.time_step = specimen_time_step(sp, table, sp.min_radius()).time_step;
   settings.skin = 0.1 * sp.diameter;
