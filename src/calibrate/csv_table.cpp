@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -149,10 +150,43 @@ double CsvTable::number(const CsvRecord& record, std::size_t column) const {
   return value;
 }
 
+bool valid_utf8(std::string_view s) {
+  for (size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    // Length of the sequence and the smallest code point it may encode (no overlong forms).
+    size_t n;
+    uint32_t cp, min;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      n = 2, cp = c & 0x1F, min = 0x80;
+    } else if ((c & 0xF0) == 0xE0) {
+      n = 3, cp = c & 0x0F, min = 0x800;
+    } else if ((c & 0xF8) == 0xF0) {
+      n = 4, cp = c & 0x07, min = 0x10000;
+    } else {
+      return false;
+    }
+    if (i + n > s.size()) return false;
+    for (size_t k = 1; k < n; ++k) {
+      const auto b = static_cast<unsigned char>(s[i + k]);
+      if ((b & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (b & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += n;
+  }
+  return true;
+}
+
 const std::string& CsvTable::text(const CsvRecord& record, std::size_t column) const {
   const std::string& cell = record.fields.at(column);
   if (cell.empty())
     throw InputError(fmt::format("{}: column '{}' is empty", where(record), header_[column]));
+  if (!valid_utf8(cell))
+    throw InputError(
+        fmt::format("{}: column '{}' is not valid UTF-8 text", where(record), header_[column]));
   return cell;
 }
 

@@ -52,4 +52,8 @@ class CsvTable {
   std::vector<CsvRecord> records_;
 };
 
+// Whether `s` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF):
+// text that ends up in a TOML file must be.
+bool valid_utf8(std::string_view s);
+
 }  // namespace grainlab::calibrate

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "calibrate/csv_table.hpp"
 #include "calibrate/input_error.hpp"
 
 namespace grainlab::calibrate {
@@ -26,6 +27,16 @@ std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
   std::replace(s.begin(), s.end(), '\r', ' ');
   return s;
+}
+
+// `s` with every byte outside printable ASCII as \xNN (for a message about a bad name).
+std::string printable(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const auto b = static_cast<unsigned char>(c);
+    out += b >= 0x20 && b < 0x7F ? std::string(1, c) : fmt::format("\\x{:02X}", b);
+  }
+  return out;
 }
 
 // A TOML basic string: double quotes, with backslash, quote and control characters escaped.
@@ -147,6 +158,13 @@ int key_rank(const std::string& key) {
 std::string merge_materials_toml(const std::string& existing, const std::string& file_name,
                                  const std::vector<PairUpdate>& updates) {
   std::vector<Pair> pairs = read_pairs(existing, file_name);
+  for (const PairUpdate& u : updates)
+    for (const std::string* name : {&u.material_a, &u.material_b})
+      if (!valid_utf8(*name) || name->empty())
+        throw InputError(fmt::format(
+            "{}: the material name '{}' is {}; names in [[pair]] entries must be UTF-8 text "
+            "(--bead-material, --material, or the data's material column; --rename FROM=TO)",
+            file_name, printable(*name), name->empty() ? "empty" : "not valid UTF-8"));
   for (const PairUpdate& u : updates) {
     auto it = std::find_if(pairs.begin(), pairs.end(),
                            [&](const Pair& p) { return same_pair(p, u.material_a, u.material_b); });

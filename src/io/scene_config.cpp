@@ -10,6 +10,13 @@
 namespace grainlab {
 namespace {
 
+// Physical ranges of the material constants, checked after unit conversion: a value outside is a
+// unit slip (a density in g/cm^3 given as kg/m^3, E in MPa given as GPa), not a material.
+constexpr double min_youngs_modulus = 1e3, max_youngs_modulus = 1e13;  // Pa: gels to diamond x 10
+constexpr double min_density = 1.0, max_density = 1e5;                 // kg/m^3
+constexpr const char* youngs_modulus_range =
+    "expected Young's modulus E in [1 kPa, 10 TPa] (from soft gels to ten times diamond's)";
+
 const toml::array* array_of_tables(const toml::table& root, const std::string& key,
                                    const std::string& file) {
   const toml::node* n = root.get(key);
@@ -72,11 +79,17 @@ void read_materials(const toml::table& root, SceneConfig& c) {
     m.youngs_modulus = r.optional_number("youngs_modulus", Quantity::pressure);
     if (m.youngs_modulus && !(*m.youngs_modulus > 0.0))
       r.fail("youngs_modulus", "expected Young's modulus E > 0 Pa");
+    if (m.youngs_modulus &&
+        !(*m.youngs_modulus >= min_youngs_modulus && *m.youngs_modulus <= max_youngs_modulus))
+      r.fail("youngs_modulus", youngs_modulus_range);
     m.poisson_ratio = r.optional_number("poisson_ratio", Quantity::dimensionless);
     if (m.poisson_ratio && !(*m.poisson_ratio > -1.0 && *m.poisson_ratio < 0.5))
       r.fail("poisson_ratio", "expected a Poisson ratio in (-1, 0.5)");
     m.density = r.optional_number("density", Quantity::density);
     if (m.density && !(*m.density > 0.0)) r.fail("density", "expected a density > 0 kg/m^3");
+    if (m.density && !(*m.density >= min_density && *m.density <= max_density))
+      r.fail("density",
+             "expected a density in [1, 100000] kg/m^3 (from aerogels to the densest metals)");
     r.finish();
     c.materials.push_back(m);
   }
@@ -119,6 +132,9 @@ void read_pairs(const toml::table& root, SceneConfig& c) {
     q.youngs_modulus = r.optional_number("youngs_modulus", Quantity::pressure);
     if (q.youngs_modulus && !(*q.youngs_modulus > 0.0))
       r.fail("youngs_modulus", "expected Young's modulus E > 0 Pa");
+    if (q.youngs_modulus &&
+        !(*q.youngs_modulus >= min_youngs_modulus && *q.youngs_modulus <= max_youngs_modulus))
+      r.fail("youngs_modulus", youngs_modulus_range);
     r.finish();
     for (const PairEntry& other : c.pairs)
       if ((other.material_a == p.material_a && other.material_b == p.material_b) ||

@@ -39,10 +39,15 @@ Placement place_on_jittered_lattice(const SpecimenSettings& s) {
   std::mt19937_64 rng(s.seed);
   const double d_max = s.diameter + s.diameter_tolerance;
   const double spacing = 1.1 * d_max;
-  // Smallest lattice of the nominal aspect ratio with enough sites.
+  // The lattice of the nominal box, grown in its aspect ratio until it has enough sites. A nominal
+  // box with far more sites than beads (it only sets the aspect ratio: "1e9 mm" is legal) starts
+  // from the size that just holds them instead, so the lattice stays about `count` sites.
+  const double nominal_sites =
+      (s.nominal_box.x / spacing) * (s.nominal_box.y / spacing) * (s.nominal_box.z / spacing);
+  const double start = nominal_sites > 8.0 * s.count ? std::cbrt(s.count / nominal_sites) : 1.0;
   int n[3];
-  for (double scale = 1.0;; scale *= 1.01) {
-    long sites = 1;
+  for (double scale = start;; scale *= 1.01) {
+    double sites = 1;
     for (int a = 0; a < 3; ++a) {
       n[a] = std::max(1, static_cast<int>(std::floor(scale * s.nominal_box[a] / spacing)));
       sites *= n[a];

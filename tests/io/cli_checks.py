@@ -109,8 +109,13 @@ def run_that_would_never_end():
     """A duration or a material constant off by orders of magnitude would need more steps than
     grainlab runs: refused up front with the step count, not left running."""
     expect_bad(replace("duration = 2e-5", 'duration = "1e300 s"'), "simulation.duration", "steps")
-    expect_bad(replace("density = 2500.0", 'density = "2.5e-30 kg/m3"'), "simulation.duration",
-               "steps", "density")
+    # A material constant off by orders of magnitude is refused by its physical range first.
+    expect_bad(replace("density = 2500.0", 'density = "2.5e-30 kg/m3"'), "material[1].density",
+               "[1, 100000] kg/m^3")
+    expect_bad(replace("density = 2500.0", 'density = "1e-300 kg/m3"'), "material[1].density",
+               "[1, 100000] kg/m^3")
+    expect_bad(replace("youngs_modulus = 46.2e9", 'youngs_modulus = "9e27 GPa"'),
+               "material[1].youngs_modulus", "10 TPa")
 
 
 @check
@@ -639,6 +644,32 @@ def walls_csv_and_wall_loads():
             force, stress = float(r["wall1_force_z_N"]), float(r["wall1_normal_stress_Pa"])
             assert r["wall1_contacts"] == "1" and force < 0.0, r
             assert abs(stress - (-force / 4e-4)) <= 1e-15 * stress and stress > 0.0, (force, stress)
+
+
+@check
+def calibration_material_names_must_be_utf8():
+    """A material name that is not UTF-8 text (in the data or on the command line) would make the
+    materials file invalid TOML: refused with exit 2 naming the file and line (or the option),
+    nothing written."""
+    throws = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                          "calibration", "throws.csv")
+    with tempfile.TemporaryDirectory() as d:
+        bad = os.path.join(d, "throws.csv")
+        data = open(throws, "rb").read()
+        assert b"\nglass," in data
+        open(bad, "wb").write(data.replace(b"\nglass,", b"\ngl\xffass,", 1))
+        out = os.path.join(d, "pairs.toml")
+        r = subprocess.run([EXE, "calibrate", "restitution", bad, "--materials-out", out],
+                           capture_output=True, timeout=600)
+        err = r.stderr.decode("utf-8", "replace")
+        assert r.returncode == 2 and "throws.csv line" in err and "UTF-8" in err, (r.returncode, err)
+        assert not os.path.exists(out)
+        r = subprocess.run([EXE, "calibrate", "restitution", throws, "--materials-out", out,
+                            "--bead-material", b"gl\xe9ass"], capture_output=True, timeout=600)
+        err = r.stderr.decode("utf-8", "replace")
+        assert r.returncode == 2 and "--bead-material" in err and "UTF-8" in err, (r.returncode, err)
+        assert not os.path.exists(out)
+        print("refused as expected:", err.strip())
 
 
 if __name__ == "__main__":
