@@ -3,7 +3,7 @@
 
 curve.png: axial stress (platens and particles), lateral stress (membrane and particles), the
 out-of-plane stress on the fixed walls and the volumetric strain against axial strain, with the
-laboratory and published DEM peaks marked.
+laboratory and published DEM peaks marked when the config gives them ([test.laboratory]).
 band.png: the local shear strain since the start over the specimen's x-z face (averaged through
 the thickness), with the shear band found and the Mohr-Coulomb, Roscoe and Arthur inclinations."""
 import json
@@ -19,8 +19,11 @@ import numpy as np  # noqa: E402
 
 d = sys.argv[1]
 data = np.genfromtxt(os.path.join(d, "curve.csv"), delimiter=",", names=True)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from laboratory_marks import draw_laboratory  # noqa: E402
+
 summary = json.load(open(os.path.join(d, "summary.json")))
-ref = summary["reference"]
+ref = summary.get("reference")  # only with [test.laboratory] in the config
 
 
 def save(fig, name):
@@ -36,10 +39,7 @@ ax1.plot(strain, 1e-3 * data["axial_stress_particles_Pa"], "--", label="axial st
 ax1.plot(strain, 1e-3 * data["lateral_stress_membrane_Pa"], label="lateral stress (membrane, applied)")
 ax1.plot(strain, 1e-3 * data["lateral_stress_particles_Pa"], "--", label="lateral stress (particles)")
 ax1.plot(strain, 1e-3 * data["out_of_plane_stress_walls_Pa"], label="out-of-plane stress (fixed walls)")
-ax1.plot([100 * ref["laboratory_axial_strain_at_peak"]], [1e-3 * ref["laboratory_peak_axial_stress_Pa"]], "ks",
-         label="laboratory peak (276.83 kPa at 5.32 %)")
-ax1.axhline(1e-3 * ref["published_dem_peak_axial_stress_Pa"], color="gray", ls=":",
-            label="published DEM, extrapolated (313 kPa)")
+draw_laboratory(ax1, ref)
 ax1.set_ylabel("stress [kPa] (compression positive)")
 ax1.legend(fontsize=7)
 ax1.grid(alpha=0.3)

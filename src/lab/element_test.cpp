@@ -136,6 +136,28 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
   s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
   if (!(s.checkpoint_interval > 0))
     t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
+  if (t.has("laboratory")) {
+    const toml::table* lab = t.node("laboratory")->as_table();
+    if (!lab)
+      t.fail("laboratory",
+             "expected a table [test.laboratory] with peak_axial_stress (and optionally "
+             "axial_strain_at_peak, published_dem_peak_axial_stress, source)");
+    TableReader l(*lab, path, "test.laboratory");
+    LaboratoryValues v;
+    v.peak_axial_stress = l.number("peak_axial_stress", Quantity::pressure);
+    if (!(v.peak_axial_stress > 0))
+      l.fail("peak_axial_stress", "expected the laboratory's peak axial stress > 0 Pa");
+    v.axial_strain_at_peak = l.optional_number("axial_strain_at_peak", Quantity::dimensionless);
+    if (v.axial_strain_at_peak && !(*v.axial_strain_at_peak > 0 && *v.axial_strain_at_peak < 0.5))
+      l.fail("axial_strain_at_peak", "expected a strain in (0, 0.5)");
+    v.published_dem_peak_axial_stress =
+        l.optional_number("published_dem_peak_axial_stress", Quantity::pressure);
+    if (v.published_dem_peak_axial_stress && !(*v.published_dem_peak_axial_stress > 0))
+      l.fail("published_dem_peak_axial_stress", "expected a peak axial stress > 0 Pa");
+    v.source = l.string_or("source", "laboratory");
+    l.finish();
+    s.laboratory = v;
+  }
   s.re_equilibration_max_time =
       t.number_or("re_equilibration_max_time", Quantity::time, s.re_equilibration_max_time);
   if (!(s.re_equilibration_max_time > 0 && s.re_equilibration_max_time <= 100))
@@ -232,6 +254,38 @@ double curve_slope(const std::vector<std::vector<double>>& rows, int x, int y,
   for (const auto& r : rows)
     if (use(r)) design.push_back({1.0, r[x]}), values.push_back(r[y]);
   return design.size() >= 3 ? calibrate::least_squares(design, values).coefficients[1] : NAN;
+}
+
+LaboratoryComparison compare_with_laboratory(const ElementTestSettings& s, double peak_axial_stress,
+                                             double axial_strain_at_peak) {
+  LaboratoryComparison out;
+  if (!s.laboratory) return out;
+  const LaboratoryValues& lab = *s.laboratory;
+  out.json = {{"source", lab.source},
+              {"laboratory_peak_axial_stress_Pa", lab.peak_axial_stress},
+              {"difference_to_laboratory", peak_axial_stress / lab.peak_axial_stress - 1.0}};
+  out.text = fmt::format("; laboratory {:.2f} kPa", 1e-3 * lab.peak_axial_stress);
+  if (lab.axial_strain_at_peak) {
+    out.json["laboratory_axial_strain_at_peak"] = *lab.axial_strain_at_peak;
+    out.json["strain_at_peak_difference_to_laboratory"] =
+        axial_strain_at_peak / *lab.axial_strain_at_peak - 1.0;
+    out.text += fmt::format(" at {:.2f} % (stress {:+.1f} %, strain at peak {:+.1f} %)",
+                            100 * *lab.axial_strain_at_peak,
+                            100 * (peak_axial_stress / lab.peak_axial_stress - 1.0),
+                            100 * (axial_strain_at_peak / *lab.axial_strain_at_peak - 1.0));
+  } else {
+    out.text +=
+        fmt::format(" ({:+.1f} %)", 100 * (peak_axial_stress / lab.peak_axial_stress - 1.0));
+  }
+  if (lab.published_dem_peak_axial_stress) {
+    out.json["published_dem_peak_axial_stress_Pa"] = *lab.published_dem_peak_axial_stress;
+    out.json["difference_to_published_dem"] =
+        peak_axial_stress / *lab.published_dem_peak_axial_stress - 1.0;
+    out.text += fmt::format(", published DEM {:.2f} kPa ({:+.1f} %)",
+                            1e-3 * *lab.published_dem_peak_axial_stress,
+                            100 * (peak_axial_stress / *lab.published_dem_peak_axial_stress - 1.0));
+  }
+  return out;
 }
 
 void add_vtk_snapshot(ElementRun& run, const std::string& dir, long step,

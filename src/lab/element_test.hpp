@@ -32,6 +32,16 @@
 
 namespace grainlab {
 
+// Laboratory values a shear test's result is compared with ([test.laboratory]); without them a run
+// reports its own result only, since a specimen that is not the laboratory's has nothing to be
+// compared with.
+struct LaboratoryValues {
+  double peak_axial_stress = 0.0;                         // Pa
+  std::optional<double> axial_strain_at_peak;             // -
+  std::optional<double> published_dem_peak_axial_stress;  // Pa, another simulation's peak
+  std::string source;                                     // where the values come from, for legends
+};
+
 struct ElementTestSettings {
   SpecimenSettings specimen;
   std::optional<std::string> specimen_file;  // a prepared specimen to reuse
@@ -46,7 +56,17 @@ struct ElementTestSettings {
   // m/s^2 along -z from the re-equilibration on (the specimen is prepared without it); only the
   // plane strain test reads the key, whose mount carries the weight on the bottom platen
   double gravity = 0.0;
+  std::optional<LaboratoryValues> laboratory;
 };
+
+// The "reference" entry of a shear test's summary.json (the laboratory values and the differences
+// to them) and the comparison's words for the run's last line ("" without [test.laboratory]).
+struct LaboratoryComparison {
+  nlohmann::json json;
+  std::string text;
+};
+LaboratoryComparison compare_with_laboratory(const ElementTestSettings& s, double peak_axial_stress,
+                                             double axial_strain_at_peak);
 
 // A test config read: materials and pairs, the pair table and the shared settings.
 struct ElementTestConfig {

@@ -20,11 +20,6 @@
 namespace grainlab {
 namespace {
 
-// Laboratory and published DEM peaks of the reference plane strain test: 926 g of 2 mm glass
-// beads, 100 x 60 x 100 mm, 150 kPa (laboratory peak 276.83 kPa at 5.32 % axial strain; the
-// published DEM scale study extrapolated 313 kPa to 2 mm beads).
-constexpr double lab_peak_axial_stress = 276.83e3, lab_axial_strain_at_peak = 0.0532;
-constexpr double published_dem_peak_axial_stress = 313e3;
 constexpr double degrees = 180.0 / M_PI;
 
 // The plane strain box of the specimen now, its lateral faces where a membrane finds them.
@@ -121,8 +116,8 @@ void plot(const std::string& dir) {
   }
 }
 
-void finish(const ElementRun& run, const PlaneStrainProgress& p, const std::string& dir,
-            bool quiet) {
+void finish(const ElementRun& run, const PlaneStrainProgress& p, const ElementTestSettings& s,
+            const std::string& dir, bool quiet) {
   nlohmann::json j = nlohmann::json::parse(run.run_info);
   const double s1 = p.peak_axial, s3 = p.peak_lateral;
   const double phi = std::asin((s1 - s3) / (s1 + s3)) * degrees;
@@ -177,25 +172,21 @@ void finish(const ElementRun& run, const PlaneStrainProgress& p, const std::stri
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
-  j["reference"] = {{"laboratory_peak_axial_stress_Pa", lab_peak_axial_stress},
-                    {"laboratory_axial_strain_at_peak", lab_axial_strain_at_peak},
-                    {"published_dem_peak_axial_stress_Pa", published_dem_peak_axial_stress},
-                    {"difference_to_laboratory", s1 / lab_peak_axial_stress - 1.0},
-                    {"difference_to_published_dem", s1 / published_dem_peak_axial_stress - 1.0}};
+  const LaboratoryComparison lab = compare_with_laboratory(s, s1, p.peak_strain);
+  if (s.laboratory) j["reference"] = lab.json;
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot(dir);
   if (!quiet)
     fmt::print(
-        "plane strain: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 276.83 "
-        "kPa at 5.32 % ({:+.1f} %), published DEM 313 kPa ({:+.1f} %); phi {:.1f} deg, psi {:.1f} "
+        "plane strain: peak axial stress {:.1f} kPa at {:.2f} % axial strain{}; phi {:.1f} deg, "
+        "psi {:.1f} "
         "deg; lateral stress of the particles vs the boundary within {:.2f} % (RMS {:.2f} %), {} "
         "escaped beads; band at "
         "{:.1f} deg (Mohr-Coulomb {:.1f}, Roscoe {:.1f}, Arthur {:.1f}), {:.1f} d thick; wall "
         "time {:.0f} s\n",
-        1e-3 * s1, 100 * p.peak_strain, 100 * (s1 / lab_peak_axial_stress - 1.0),
-        100 * (s1 / published_dem_peak_axial_stress - 1.0), phi, psi, 100 * p.max_membrane_error,
-        100 * rms, p.max_escaped, band.band.inclination_deg, 45 + phi / 2, 45 + psi / 2,
-        45 + (phi + psi) / 4, band.band.thickness / p.diameter, j["wall_time_s"].get<double>());
+        1e-3 * s1, 100 * p.peak_strain, lab.text, phi, psi, 100 * p.max_membrane_error, 100 * rms,
+        p.max_escaped, band.band.inclination_deg, 45 + phi / 2, 45 + psi / 2, 45 + (phi + psi) / 4,
+        band.band.thickness / p.diameter, j["wall_time_s"].get<double>());
   if (p.max_escaped > 0)
     throw UnreliableResult(fmt::format(
         "{} beads escaped through the membrane: the results are not those of a confined "
@@ -207,7 +198,7 @@ void shear_and_finish(ElementRun& run, const PlaneStrainProgress& start, const P
                       const RunOptions& options, const std::string* membrane_state) {
   PlaneStrainShear stage(run, start, options.out_dir, membrane_state);
   load_to_end(run, stage, c.settings.checkpoint_interval, options);
-  finish(run, stage.progress(), options.out_dir, options.quiet);
+  finish(run, stage.progress(), c.settings, options.out_dir, options.quiet);
 }
 
 }  // namespace

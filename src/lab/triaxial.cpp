@@ -16,12 +16,8 @@
 namespace grainlab {
 namespace {
 
-// Laboratory and published DEM peaks of the reference case (DESIGN.md sec. 5).
-constexpr double lab_peak_axial_stress = 342.4e3, lab_axial_strain_at_peak = 0.0511;
-constexpr double published_dem_peak_axial_stress = 320.25e3;
-
-void finish_triaxial(const ElementRun& run, const ShearProgress& p, const std::string& dir,
-                     bool quiet) {
+void finish_triaxial(const ElementRun& run, const ShearProgress& p, const ElementTestSettings& s,
+                     const std::string& dir, bool quiet) {
   const double sigma3 = p.confining_stress;
   const double phi_peak =
       std::asin(p.peak_deviator / (p.peak_deviator + 2.0 * sigma3)) * 180.0 / M_PI;
@@ -50,33 +46,24 @@ void finish_triaxial(const ElementRun& run, const ShearProgress& p, const std::s
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
-  j["reference"] = {
-      {"laboratory_peak_axial_stress_Pa", lab_peak_axial_stress},
-      {"laboratory_axial_strain_at_peak", lab_axial_strain_at_peak},
-      {"published_dem_peak_axial_stress_Pa", published_dem_peak_axial_stress},
-      {"difference_to_laboratory", p.peak_axial / lab_peak_axial_stress - 1.0},
-      {"strain_at_peak_difference_to_laboratory", p.peak_strain / lab_axial_strain_at_peak - 1.0},
-      {"difference_to_published_dem", p.peak_axial / published_dem_peak_axial_stress - 1.0}};
+  const LaboratoryComparison lab = compare_with_laboratory(s, p.peak_axial, p.peak_strain);
+  if (s.laboratory) j["reference"] = lab.json;
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot_triaxial_curve(dir);
   if (!quiet)
     fmt::print(
-        "triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain; laboratory 342.4 kPa at "
-        "5.11 % (stress {:+.1f} %, strain at peak {:+.1f} %), "
-        "published DEM 320.25 kPa ({:+.1f} %); lateral stress RMS error {:.2f} % (worst interval "
-        "{:.2f} %); particle vs boundary stress within {:.2f} %; wall time {:.0f} s\n",
-        1e-3 * p.peak_axial, 100 * p.peak_strain,
-        100 * (p.peak_axial / lab_peak_axial_stress - 1.0),
-        100 * (p.peak_strain / lab_axial_strain_at_peak - 1.0),
-        100 * (p.peak_axial / published_dem_peak_axial_stress - 1.0), 100 * rms,
-        100 * p.max_lateral_error, 100 * p.worst_agreement, j["wall_time_s"].get<double>());
+        "triaxial: peak axial stress {:.1f} kPa at {:.2f} % axial strain{}; lateral stress RMS "
+        "error {:.2f} % (worst interval {:.2f} %); particle vs boundary stress within {:.2f} %; "
+        "wall time {:.0f} s\n",
+        1e-3 * p.peak_axial, 100 * p.peak_strain, lab.text, 100 * rms, 100 * p.max_lateral_error,
+        100 * p.worst_agreement, j["wall_time_s"].get<double>());
 }
 
 void shear_and_finish(ElementRun& run, const ShearProgress& start, const TriaxialConfig& c,
                       const RunOptions& options) {
   TriaxialShear stage(run, start, options.out_dir);
   load_to_end(run, stage, c.settings.checkpoint_interval, options);
-  finish_triaxial(run, stage.progress(), options.out_dir, options.quiet);
+  finish_triaxial(run, stage.progress(), c.settings, options.out_dir, options.quiet);
 }
 
 }  // namespace

@@ -637,6 +637,42 @@ def preparation_checkpoint_survives_kill():
         assert open(os.path.join(a, "specimen.csv")).read() == open(os.path.join(b, "specimen.csv")).read(), "specimen differs"
 
 
+def laboratory_values_only_when_given():
+    """A shear test compares its result with laboratory values only when the config gives them
+    ([test.laboratory]): without, neither the last line nor summary.json speaks of a laboratory;
+    with, summary.json "reference" holds the values and the differences computed from the run's
+    own peak. Bad laboratory values: exit 2 naming the key."""
+    base = TRIAXIAL.replace("max_axial_strain = 0.10", "max_axial_strain = 0.01")
+    assert base != TRIAXIAL
+    lab = ('[test.laboratory]\nsource = "my lab"\npeak_axial_stress = "342.4 kPa"\n'
+           'axial_strain_at_peak = 0.0511\n\n[[material]]')
+    with tempfile.TemporaryDirectory() as d:
+        for with_lab in (False, True):
+            path = os.path.join(d, f"t{with_lab}.toml")
+            open(path, "w").write(base.replace("[[material]]", lab, 1) if with_lab else base)
+            out = os.path.join(d, f"o{with_lab}")
+            r = run("run", path, "--out", out)
+            assert r.returncode == 0, r.stderr
+            s = json.load(open(os.path.join(out, "summary.json")))
+            last = [x for x in r.stdout.splitlines() if x.startswith("triaxial: peak")][0]
+            print(last)
+            if not with_lab:
+                assert "laboratory" not in r.stdout and "reference" not in s, (r.stdout, s.get("reference"))
+            else:
+                ref = s["reference"]
+                assert ref["source"] == "my lab" and ref["laboratory_peak_axial_stress_Pa"] == 342.4e3, ref
+                assert abs(ref["difference_to_laboratory"] - (s["peak_axial_stress_Pa"] / 342.4e3 - 1)) < 1e-12
+                assert abs(ref["strain_at_peak_difference_to_laboratory"]
+                           - (s["axial_strain_at_peak"] / 0.0511 - 1)) < 1e-12
+                assert "laboratory 342.40 kPa at 5.11 %" in last, last
+    for new, key in (('[test.laboratory]\npeak_axial_stress = "-1 kPa"\n\n[[material]]', "test.laboratory.peak_axial_stress"),
+                     ('[test.laboratory]\npeak_axial_stress = "1 kPa"\naxial_strain_at_peak = 2.0\n\n[[material]]',
+                      "test.laboratory.axial_strain_at_peak"),
+                     ('[test.laboratory]\npeak_axial_stress = "1 kPa"\npeak_strain = 0.05\n\n[[material]]', "peak_strain"),
+                     ('[test.laboratory]\n\n[[material]]', "peak_axial_stress")):
+        expect_bad_element_test(base, "[[material]]", new, key)
+
+
 SCALE_STUDY = open(os.path.join(SRC, "examples/scale_study/small.toml")).read()
 
 
