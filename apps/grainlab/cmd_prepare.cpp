@@ -5,7 +5,7 @@
 
 #include "command.hpp"
 #include "io/config_error.hpp"
-#include "lab/interrupt.hpp"
+#include "io/interrupt.hpp"
 #include "lab/lab_test.hpp"
 
 namespace grainlab::app {

@@ -6,9 +6,9 @@
 #include "command.hpp"
 #include "core/simulation.hpp"
 #include "io/config_error.hpp"
+#include "io/interrupt.hpp"
 #include "io/scene_run.hpp"
 #include "io/toml_reader.hpp"
-#include "lab/interrupt.hpp"
 #include "lab/lab_test.hpp"
 
 namespace grainlab::app {
@@ -43,7 +43,10 @@ Command add_run_command(CLI::App& app) {
               if (options->threads > 0) omp_set_num_threads(options->threads);
               if (!resume->empty()) {
                 options->out_dir = *resume;
-                resume_lab_test(*options);
+                if (is_scene_checkpoint(options->out_dir + "/checkpoint.bin"))
+                  resume_scene(*options);
+                else
+                  resume_lab_test(*options);
               } else {
                 // A config with a [test] table is a virtual laboratory test (src/lab/).
                 const toml::table root = parse_toml_file(*config);

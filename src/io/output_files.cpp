@@ -37,6 +37,27 @@ CsvStream::CsvStream(std::string path, const std::string& header) : path_(std::m
   std::fputs((header + "\n").c_str(), file_);
 }
 
+CsvStream CsvStream::resumed(std::string path, long bytes) {
+  CsvStream s;
+  s.path_ = std::move(path);
+  record_output(s.path_);
+  const std::string partial = s.path_ + ".partial";
+  std::error_code ec;
+  const auto size = fs::file_size(partial, ec);
+  if (ec || static_cast<long>(size) < bytes)
+    throw std::runtime_error(partial +
+                             " is shorter than at the checkpoint: it cannot be continued");
+  fs::resize_file(partial, static_cast<uintmax_t>(bytes));
+  s.file_ = std::fopen(partial.c_str(), "a");
+  if (!s.file_) throw std::runtime_error("cannot write " + partial);
+  return s;
+}
+
+long CsvStream::flushed_bytes() {
+  if (std::fflush(file_) != 0) throw std::runtime_error("error writing " + path_ + " (disk full?)");
+  return std::ftell(file_);
+}
+
 CsvStream::~CsvStream() {
   if (file_) std::fclose(file_);  // left as .partial: the run did not finish
 }

@@ -21,13 +21,21 @@ void write_file_atomically(const std::string& path, const std::string& content);
 class CsvStream {
  public:
   CsvStream(std::string path, const std::string& header);
+  // Continues PATH.partial of an interrupted run, cut back to the `bytes` it had at its checkpoint.
+  static CsvStream resumed(std::string path, long bytes);
+  // Flushes and returns the bytes written so far (for a checkpoint).
+  long flushed_bytes();
   ~CsvStream();
   CsvStream(const CsvStream&) = delete;
   CsvStream& operator=(const CsvStream&) = delete;
   void write(const std::string& line) { std::fputs(line.c_str(), file_); }
   void close();
+  CsvStream(CsvStream&& other) noexcept : path_(std::move(other.path_)), file_(other.file_) {
+    other.file_ = nullptr;
+  }
 
  private:
+  CsvStream() = default;
   std::string path_;
   std::FILE* file_ = nullptr;
 };

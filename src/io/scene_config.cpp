@@ -383,6 +383,10 @@ void read_output(const toml::table& root, SceneConfig& c) {
         r.fail("trace", "expected \"all\", \"none\" or a list of particle ids");
       }
     }
+    c.output.checkpoint_interval =
+        r.number_or("checkpoint_interval", Quantity::time, c.output.checkpoint_interval);
+    if (!(c.output.checkpoint_interval > 0.0))
+      r.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
     c.output.vtk = r.boolean_or("vtk", false);
     c.output.vtk_interval = r.number_or("vtk_interval", Quantity::time, 0.0);
     if (r.has("vtk_interval") && !(c.output.vtk_interval > 0.0))

@@ -62,7 +62,8 @@ struct OutputSettings {
   bool trace_all = true;
   std::vector<uint32_t> trace_ids;  // when not trace_all
   bool vtk = false;
-  double vtk_interval = 0.0;  // s
+  double vtk_interval = 0.0;           // s
+  double checkpoint_interval = 300.0;  // s of wall time between checkpoints
 };
 
 struct SceneConfig {

@@ -19,4 +19,10 @@ struct RunOptions {
 // Throws ConfigError for bad input (nothing is written then), BlowUpError if the run blows up.
 void run_scene(const std::string& config_path, const RunOptions& options);
 
+// Scene runs write DIR/checkpoint.bin every output.checkpoint_interval of wall time and on
+// Ctrl-C / SIGTERM; `grainlab run --resume DIR` continues one bit-identically (the config file
+// must be the one it started from). Whether DIR/checkpoint.bin is a scene run's:
+bool is_scene_checkpoint(const std::string& path);
+void resume_scene(const RunOptions& options);
+
 }  // namespace grainlab

@@ -27,4 +27,14 @@ void WallStressControl::before_step(Simulation& sim) {
   }
 }
 
+std::vector<double> WallStressControl::integrals() const {
+  std::vector<double> v;
+  for (const HeldWall& h : held_) v.push_back(h.servo.integral());
+  return v;
+}
+
+void WallStressControl::set_integrals(const std::vector<double>& v) {
+  for (size_t k = 0; k < held_.size() && k < v.size(); ++k) held_[k].servo.set_integral(v[k]);
+}
+
 }  // namespace grainlab

@@ -26,6 +26,9 @@ class WallStressControl : public StepListener {
 
   bool empty() const { return held_.empty(); }
   void before_step(Simulation& sim) override;
+  // The servos' integral terms, for checkpoints (one per held wall, in wall order).
+  std::vector<double> integrals() const;
+  void set_integrals(const std::vector<double>& v);
 
  private:
   struct HeldWall {

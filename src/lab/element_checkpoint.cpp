@@ -1,6 +1,6 @@
 // The element-test checkpoint file: magic, test type, config, run info, curve and VTK index so
 // far, the stage's own state, wall time, the simulation state, sealed with a checksum
-// (lab/checkpoint_file.hpp; lab/element_test.hpp: save_checkpoint, peek_checkpoint,
+// (io/checkpoint_file.hpp; lab/element_test.hpp: save_checkpoint, peek_checkpoint,
 // load_checkpoint).
 #include <fmt/format.h>
 
@@ -9,9 +9,9 @@
 #include <sstream>
 #include <string_view>
 
+#include "io/checkpoint_file.hpp"
 #include "io/config_error.hpp"
 #include "io/output_files.hpp"
-#include "lab/checkpoint_file.hpp"
 #include "lab/element_test.hpp"
 
 namespace grainlab {

@@ -10,10 +10,10 @@
 
 #include "core/simulation.hpp"
 #include "io/config_error.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/python_script.hpp"
 #include "io/summary_header.hpp"
-#include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/scale_study_report.hpp"

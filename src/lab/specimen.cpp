@@ -16,9 +16,9 @@
 #include "core/random_insertion.hpp"
 #include "core/simulation.hpp"
 #include "io/config_error.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
-#include "lab/interrupt.hpp"
 #include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
 

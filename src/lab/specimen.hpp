@@ -19,7 +19,7 @@
 #include "contact/stability.hpp"
 #include "core/particles.hpp"
 #include "core/simulation.hpp"
-#include "lab/checkpoint_file.hpp"
+#include "io/checkpoint_file.hpp"
 
 namespace grainlab {
 
@@ -113,7 +113,7 @@ HoldState hold_isotropic(Simulation& sim, const HoldCriteria& criteria,
                          const std::function<bool(const HoldState&)>& on_check);
 
 // Periodic checkpoints of a preparation: every `interval_s` of wall time, on Ctrl-C and at its
-// end, the preparation's whole state goes to `path` (sealed, lab/checkpoint_file.hpp) with the
+// end, the preparation's whole state goes to `path` (sealed, io/checkpoint_file.hpp) with the
 // test type and config it belongs to; with `resume` the preparation continues from that file
 // and ends with the same specimen, bit for bit, as an uninterrupted one.
 struct PreparationCheckpoints {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
-#include "lab/interrupt.hpp"
 #include "lab/lab_config.hpp"
 #include "lab/triaxial_plot.hpp"
 #include "lab/triaxial_shear.hpp"

@@ -37,7 +37,7 @@
 #include "io/config_error.hpp"
 #include "io/scene_config.hpp"
 #include "io/units.hpp"
-#include "lab/checkpoint_file.hpp"
+#include "io/checkpoint_file.hpp"
 #include "lab/element_test.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/specimen.hpp"

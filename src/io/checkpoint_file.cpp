@@ -1,4 +1,4 @@
-#include "lab/checkpoint_file.hpp"
+#include "io/checkpoint_file.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "lab/interrupt.hpp"
+#include "io/interrupt.hpp"
 
 #include <csignal>
 
