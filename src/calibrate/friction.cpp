@@ -17,6 +17,54 @@ std::string join_speeds(const std::vector<FrictionAtSpeed>& speeds) {
   return fmt::format("{}", fmt::join(s, ", "));
 }
 
+// Plausible ranges of a sliding-friction bench test: dry friction coefficients up to about 1.5
+// (rubber on rough surfaces), loads and forces up to a few kN on a laboratory slider.
+constexpr double max_plausible_friction = 1.5;
+constexpr double max_plausible_force_n = 1e4;
+constexpr double min_r_squared = 0.9;
+constexpr size_t max_point_warnings = 5;
+
+void add_plausibility_warnings(FrictionAnalysis& a) {
+  size_t point_warnings = 0, more = 0;
+  auto point_warning = [&](std::string w) {
+    if (point_warnings++ < max_point_warnings)
+      a.warnings.push_back(std::move(w));
+    else
+      ++more;
+  };
+  for (const FrictionMaterial& m : a.materials) {
+    for (const FrictionAtSpeed& s : m.speeds) {
+      for (const LoadPoint& p : s.points) {
+        if (p.normal_load_n > max_plausible_force_n || p.friction_force_n > max_plausible_force_n)
+          point_warning(fmt::format(
+              "{} line {}: a load of {:.4g} N / a force of {:.4g} N is beyond a sliding-friction "
+              "bench ({:g} N); are the units N?",
+              a.source, p.line, p.normal_load_n, p.friction_force_n, max_plausible_force_n));
+        else if (p.friction_force_n > max_plausible_friction * p.normal_load_n)
+          point_warning(fmt::format(
+              "{} line {}: F / P = {:.3g}, above any dry friction coefficient ({:g}); are F and "
+              "P in the same unit and in the right columns?",
+              a.source, p.line, p.friction_force_n / p.normal_load_n, max_plausible_friction));
+      }
+      if (!(s.origin.slope > 0 && s.origin.slope <= max_plausible_friction))
+        a.warnings.push_back(fmt::format("{} at {:g} mm/min: mu = {:.4g} is outside (0, {:g}]",
+                                         m.material, s.speed_mm_per_min, s.origin.slope,
+                                         max_plausible_friction));
+      if (!(s.origin.r_squared >= min_r_squared))
+        a.warnings.push_back(fmt::format(
+            "{} at {:g} mm/min: the F-P line explains little of the scatter (R^2 = {:.3g} < "
+            "{:g}); mu is not reliable there",
+            m.material, s.speed_mm_per_min, s.origin.r_squared, min_r_squared));
+    }
+    if (m.speed_fit && !(m.speed_fit->quasi_static.value > 0 &&
+                         m.speed_fit->quasi_static.value <= max_plausible_friction))
+      a.warnings.push_back(fmt::format("{}: the quasi-static mu = {:.4g} is outside (0, {:g}]",
+                                       m.material, m.speed_fit->quasi_static.value,
+                                       max_plausible_friction));
+  }
+  if (more) a.warnings.push_back(fmt::format("... and {} more lines like these", more));
+}
+
 }  // namespace
 
 FrictionAnalysis analyse_friction(const CsvTable& table, const FrictionOptions& options) {
@@ -91,6 +139,7 @@ FrictionAnalysis analyse_friction(const CsvTable& table, const FrictionOptions& 
           options.breakpoint_mm_per_min, m.material, join_speeds(m.speeds));
     }
   }
+  add_plausibility_warnings(analysis);
   return analysis;
 }
 

@@ -38,6 +38,9 @@ struct FrictionAnalysis {
   std::string source;
   FrictionOptions options;
   std::vector<FrictionMaterial> materials;  // in order of first appearance
+  // Data or results outside what a sliding-friction test gives (a unit slip, a fit that explains
+  // little): printed with the report and in its JSON.
+  std::vector<std::string> warnings;
 };
 
 // Columns: material, speed_mm_per_min, normal_load_N, friction_force_N. Throws InputError naming

@@ -146,7 +146,8 @@ json friction_json(const FrictionAnalysis& a) {
           {"source", a.source},
           {"level", a.options.level},
           {"breakpoint_mm_per_min", a.options.breakpoint_mm_per_min},
-          {"materials", materials}};
+          {"materials", materials},
+          {"warnings", a.warnings}};
 }
 
 }  // namespace grainlab::calibrate

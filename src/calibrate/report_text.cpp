@@ -145,6 +145,7 @@ std::string friction_text(const FrictionAnalysis& a) {
                m.speed_fit ? interval(m.speed_fit->quasi_static.ci) : "n/a"});
   }
   out += s.str();
+  for (const auto& w : a.warnings) out += fmt::format("  warning: {}\n", w);
   return out;
 }
 

@@ -168,3 +168,27 @@ TEST(Friction, BadCellsAreErrorsWithLines) {
                 .find("slide.csv line 1: missing column 'friction_force_N'"),
             std::string::npos);
 }
+
+// Plausibility: clean data of the fitted family gives no warning; a force in the wrong unit
+// (9.2e18 N on a 0.25 N load) and scatter that swamps the F-P line each warn, naming the line
+// or the speed.
+TEST(FrictionAnalysis, WarnsAboutImplausibleDataAndFits) {
+  const std::vector<LoadPoint> clean = make_points({1, 2, 3, 5, 10, 25}, 0.002, 7);
+  EXPECT_TRUE(
+      analyse_friction(CsvTable::parse(csv_of(clean, "membrane"), "clean.csv")).warnings.empty());
+
+  std::vector<LoadPoint> slipped = clean;
+  slipped[3].friction_force_n = 9.2e18;
+  const FrictionAnalysis a =
+      analyse_friction(CsvTable::parse(csv_of(slipped, "membrane"), "x.csv"));
+  ASSERT_FALSE(a.warnings.empty());
+  EXPECT_NE(a.warnings[0].find("x.csv line 5"), std::string::npos) << a.warnings[0];
+  EXPECT_NE(a.warnings[0].find("10000 N"), std::string::npos) << a.warnings[0];
+
+  std::vector<LoadPoint> noisy = make_points({1, 2, 3, 5, 10, 25}, 0.1, 7);
+  for (LoadPoint& p : noisy) p.friction_force_n = std::abs(p.friction_force_n);
+  const FrictionAnalysis b = analyse_friction(CsvTable::parse(csv_of(noisy, "membrane"), "n.csv"));
+  bool low_r2 = false;
+  for (const auto& w : b.warnings) low_r2 |= w.find("R^2") != std::string::npos;
+  EXPECT_TRUE(low_r2);
+}
