@@ -19,7 +19,7 @@
 
 namespace grainlab::bench {
 
-// The reference beads and pairs (DESIGN.md sec. 3): glass-glass and glass-wall with the same
+// The reference beads and pairs (docs/contact-model.md): glass-glass and glass-wall with the same
 // e and mu so that the peer codes, which have one wall law, see the same model.
 inline constexpr double glass_E = 46.2e9;        // Pa
 inline constexpr double glass_density = 2500.0;  // kg/m^3

@@ -1,5 +1,6 @@
-// `grainlab calibrate restitution|friction`: analysis of laboratory measurements (DESIGN.md
-// sec. 4, src/calibrate/). Prints tables like the published Tables 3 and 4 (or JSON with
+// `grainlab calibrate restitution|friction`: analysis of laboratory measurements
+// (docs/calibration.md, src/calibrate/). Prints tables like the published Tables 3 and 4 (or JSON
+// with
 // --json), optionally plots them and writes the [[pair]] entries `grainlab run` reads.
 #include <fmt/format.h>
 

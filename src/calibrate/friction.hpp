@@ -1,4 +1,4 @@
-// Sliding-friction test analysis of a whole measurement file (DESIGN.md sec. 4): per material
+// Sliding-friction test analysis of a whole measurement file (docs/calibration.md): per material
 // and speed the F-P fits, per material the speed curve and the quasi-static coefficient
 // (the published Table 4). The fits themselves are in friction_fits.hpp.
 #pragma once

@@ -1,4 +1,4 @@
-// The fits of the sliding-friction test (DESIGN.md sec. 4; Tang et al. 2019, Eq. 2, Table 4).
+// The fits of the sliding-friction test (docs/calibration.md; Tang et al. 2019, Eq. 2, Table 4).
 //
 // A slider faced with the boundary material is pulled over a bead bed at constant speed V;
 // the rope force F is measured for several normal loads P. Coulomb friction F = mu P, so at

@@ -1,4 +1,4 @@
-// Restitution coefficients from a flat-throw test (DESIGN.md sec. 4; Tang et al. 2019, Table 3).
+// Restitution coefficients from a flat-throw test (docs/calibration.md; Tang et al. 2019, Table 3).
 //
 // A bead leaves a horizontal launch lip at height H above a plate of the test material and
 // rebounds to an apex at height h. The vertical impact speed is sqrt(2 g H) and the rebound

@@ -1,4 +1,4 @@
-// Restitution from a camera-tracked trajectory of one flat throw (DESIGN.md sec. 4).
+// Restitution from a camera-tracked trajectory of one flat throw (docs/calibration.md).
 //
 // The bead centre is in free flight before and after the impact, so its height follows two
 // parabolas with the same gravity:

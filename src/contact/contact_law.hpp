@@ -1,4 +1,4 @@
-// The full contact law for one contact: the pieces of DESIGN.md sec. 2 put together. The
+// The full contact law for one contact: the pieces of docs/contact-model.md put together. The
 // optional pieces are template switches, chosen once outside the force loop, so the loop has
 // no per-contact branching on the model and no virtual calls.
 #pragma once

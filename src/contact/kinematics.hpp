@@ -1,6 +1,6 @@
 // Per-contact kinematics, computed once per contact per step and handed to every piece of the
 // contact law (normal, sliding, rolling, twisting). Body A is a particle; body B is a particle
-// or a wall. Symbols (DESIGN.md sec. 2):
+// or a wall. Symbols (docs/contact-model.md):
 //   n        unit normal from A towards B                          [-]
 //   U_n      overlap r_A + r_B - D (or r_A - distance to wall)     [m]
 //   dU_n/dt  overlap rate, positive while approaching              [m/s]

@@ -1,4 +1,4 @@
-// Materials and the measured quantities of each material pair (DESIGN.md sec. 2-3), as read
+// Materials and the measured quantities of each material pair (docs/contact-model.md), as read
 // from a configuration. Units: Pa, kg/m^3, dimensionless coefficients.
 #pragma once
 

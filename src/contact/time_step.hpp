@@ -1,4 +1,4 @@
-// Collision duration and time step (DESIGN.md sec. 2).
+// Collision duration and time step (docs/contact-model.md).
 //   t_c = 2 r_min sqrt(rho (pi^2 + ln^2 e) / (3 E))   (published Eq. 11) [s]
 // is exactly the duration of a binary collision of two spheres of radius r_min under this
 // model with the textbook damping (omega_0^2 = k_n/m* = 3E/(4 r^2 rho) for equal spheres and for

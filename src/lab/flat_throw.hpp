@@ -1,4 +1,4 @@
-// Simulated flat-throw restitution test (DESIGN.md sec. 5). A bead leaves a horizontal launch
+// Simulated flat-throw restitution test (docs/lab-tests.md). A bead leaves a horizontal launch
 // lip with its lowest point at height H above a target (a wall of a chosen material, or the top
 // of a fixed bead for glass on glass), rebounds, and the apex of the rebound gives h. As in the
 // laboratory, e_sim = sqrt(h/H): heights are those of the bead's lowest point above the target

@@ -28,11 +28,11 @@ ElementTestConfig element_config(const std::string& path, const toml::table& roo
 
 const std::vector<LabTestEntry>& lab_tests() {
   static const std::vector<LabTestEntry> table{
-      {"flat_throw", "simulated flat-throw restitution test (DESIGN.md sec. 5)", run_flat_throw},
-      {"sliding_friction", "simulated sliding-friction test, with inverse mode (DESIGN.md sec. 5)",
+      {"flat_throw", "simulated flat-throw restitution test (docs/lab-tests.md)", run_flat_throw},
+      {"sliding_friction", "simulated sliding-friction test, with inverse mode (docs/lab-tests.md)",
        run_sliding_friction},
       {"triaxial",
-       "triaxial test of a cuboid specimen with servo-held lateral walls (DESIGN.md sec. 5)",
+       "triaxial test of a cuboid specimen with servo-held lateral walls (docs/lab-tests.md)",
        run_triaxial, element_config<TriaxialConfig, read_triaxial_config>, resume_triaxial},
       {"oedometer",
        "one-dimensional compression between fixed lateral walls: constrained modulus and K0",

@@ -1,4 +1,4 @@
-// Simulated sliding-friction test (DESIGN.md sec. 5). A bed of beads (a few layers, deposited
+// Simulated sliding-friction test (docs/lab-tests.md). A bed of beads (a few layers, deposited
 // by gravity in a box) carries a rigid flat slider faced with the boundary material. The slider
 // has mass, is pressed down by a normal load P and pulled horizontally through a spring (the
 // rope and force sensor) whose far end moves at speed V. The mean rope force while sliding is F;

@@ -1,4 +1,4 @@
-// Specimen preparation for element tests (DESIGN.md sec. 5, issue 5): N spheres placed without
+// Specimen preparation for element tests (docs/lab-tests.md): N spheres placed without
 // overlap in a cuboid, then compressed isotropically by six stress-controlled walls to the
 // confining stress, with the friction during compaction steered so that the solid fraction
 // hits a target. The prepared specimen is saved and reused by any number of tests.

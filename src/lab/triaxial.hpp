@@ -1,4 +1,4 @@
-// The triaxial test (DESIGN.md sec. 5, issue 5): a cuboid specimen between four lateral walls
+// The triaxial test (docs/lab-tests.md): a cuboid specimen between four lateral walls
 // held at the confining stress by servo control and two platens moving toward each other at a
 // constant speed, no gravity, to a final axial strain. Loading rate: the paper's platen speed,
 // or the fastest rate whose inertial number I = strain_rate d sqrt(rho / p) stays below a bound.

@@ -1,4 +1,4 @@
-// Measurements on a specimen (DESIGN.md sec. 5, issue 5): stresses from the walls and from the
+// Measurements on a specimen (docs/lab-tests.md): stresses from the walls and from the
 // particles, solid fraction, coordination number, unbalanced force, inertial number.
 // Compressive stress is positive.
 //

@@ -1,4 +1,4 @@
-// Material-pair constants and the time step, against the reference case (DESIGN.md sec. 2-3).
+// Material-pair constants and the time step, against the reference case (docs/contact-model.md).
 #include <gtest/gtest.h>
 
 #include <numbers>
@@ -11,7 +11,7 @@ using namespace grainlab;
 TEST(PairTable, ReferenceGlassStiffnessAndCollisionDuration) {
   PairTable t({Material{"glass", 46.2e9, 0.245, 2500.0}});
   t.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
-  // k_n = pi E r*, r* = 0.5 mm for two 2 mm beads: 7.257e7 N/m (issue 2)
+  // k_n = pi E r*, r* = 0.5 mm for two 2 mm beads: 7.257e7 N/m
   EXPECT_NEAR(t(0, 0).stiffness_per_radius * 0.5e-3, 7.2571e7, 0.0001e7);
   // Eq. 11 for the reference beads: 8.44e-7 s
   EXPECT_NEAR(collision_duration(1e-3, 2500.0, 46.2e9, 0.926), 8.441e-7, 0.001e-7);

@@ -1,4 +1,4 @@
-// The step loop's extension points (issue 11): step listeners and their order, the per-particle
+// The step loop's extension points: step listeners and their order, the per-particle
 // external force source, the rebuild check on walls that grow or turn, and the pair-table command.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Numbers with units in configs (DESIGN.md sec. 6).
+// Numbers with units in configs (docs/scene-schema.md).
 #include <gtest/gtest.h>
 
 #include "io/units.hpp"

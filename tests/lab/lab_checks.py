@@ -239,14 +239,14 @@ def read_curve(path):
 
 def triaxial_small_specimen_shear():
     """The 500-bead example (prepared dense for its box, solid fraction 0.55) sheared to 10 % axial
-    strain (issue 5):
+    strain:
     - the servo holds every lateral wall within +-1 % of 150 kPa in every output interval;
     - once past 0.5 % axial strain, the Love-Weber average stress agrees with the boundary-average
       stress (platens and lateral walls, with the moment of the wall friction; the average-stress
       theorem) within 2 % on every axis and in every interval;
     - the axial stress rises to a peak and then softens;
     - the peak stress ratio q/p lies within 25 % of the published DEM value for the same beads:
-      Tang, Song, Dong & Song (2019), the reference study (shared/reference/paper.json): 320.25 kPa
+      Tang, Song, Dong & Song (2019), the reference study (its Table 6): 320.25 kPa
       peak axial stress at 150 kPa confinement, rigid frictional servo walls, mu = 0.16, solid
       fraction 0.583, so q/p = 170.25 / 206.75 = 0.823 (peak friction angle 21.2 deg); the band is
       0.62 to 1.03 (peak friction angle 16.4 to 26.1 deg).

@@ -1,5 +1,5 @@
 // The simulated flat-throw test must return the input restitution: |e_sim - e| <= 0.005 for e
-// from 0.3 to 0.95, on a wall and on a fixed bead (issue 4; the round trip of DESIGN.md sec. 5).
+// from 0.3 to 0.95, on a wall and on a fixed bead (the round trip of docs/lab-tests.md).
 #include <gtest/gtest.h>
 
 #include "contact/pair_table.hpp"

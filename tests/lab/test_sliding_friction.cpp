@@ -1,5 +1,5 @@
 // Simulated sliding-friction test. Coulomb check: a slider on fixed beads that never meet its
-// edges must give F = mu_s P exactly, so the F-P slope is the input friction (issue 4).
+// edges must give F = mu_s P exactly, so the F-P slope is the input friction.
 #include <gtest/gtest.h>
 
 #include "lab/sliding_friction.hpp"
