@@ -314,7 +314,15 @@ class ScaleStudy {
     r.wall_time = j["wall_time_s"].get<double>();
     if (r.status.empty()) {
       const long escaped = j["membrane"]["max_escaped_beads"].get<long>();
-      r.status = escaped > 0 ? fmt::format("{} beads escaped through the membrane", escaped) : "ok";
+      if (escaped > 0)
+        r.status = fmt::format("{} beads escaped through the membrane", escaped);
+      else if (!j["re_equilibration"]["reached"].get<bool>())
+        r.status = r.gravity > 0
+                       ? "not at rest before the loading: the specimen slumps under its own weight "
+                         "at this confining stress"
+                       : "not at rest before the loading: the re-equilibration did not converge";
+      else
+        r.status = "ok";
     }
   }
 

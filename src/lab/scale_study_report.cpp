@@ -127,7 +127,18 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
 
   // Per gravity setting: the published quadratic form and the dimensional-analysis form on the
   // runs that gave a peak.
-  std::string off_text, on_text, published_text;
+  std::string off_text, on_text, published_text, slump_text;
+  {
+    std::vector<std::string> slumped;
+    for (const ScaleRun& r : runs)
+      if (r.gravity > 0 && r.status.rfind("not at rest", 0) == 0)
+        slumped.push_back(fmt::format("{:g}", r.diameter));
+    if (!slumped.empty())
+      slump_text = fmt::format(
+          " At d = {} m the specimen cannot stand under its own weight at sigma_3 = {:.0f} kPa "
+          "(it slumps before the loading; those runs are flagged and left out of the fits).",
+          fmt::join(slumped, ", "), 1e-3 * s3);
+  }
   nlohmann::json fits = nlohmann::json::object();
   for (bool on : {false, true}) {
     std::vector<const ScaleRun*> ok;
@@ -137,7 +148,7 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
     std::vector<std::vector<double>> quad, da, slope;
     std::vector<double> peak, ratio;
     double ratio_per_metre = 0.0, i_min = INFINITY, i_max = 0.0, d_min = INFINITY, d_max = 0.0;
-    double p_min = INFINITY, p_max = 0.0;
+    double p_min = INFINITY, p_max = 0.0, p_at_d_min = NAN, p_at_d_max = NAN;
     for (const ScaleRun* r : ok) {
       const double d = r->diameter;
       quad.push_back({d * d, d, 1.0});
@@ -148,7 +159,8 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
       ratio_per_metre += r->self_weight_ratio / d / ok.size();
       i_min = std::min(i_min, r->max_inertial_number),
       i_max = std::max(i_max, r->max_inertial_number);
-      d_min = std::min(d_min, d), d_max = std::max(d_max, d);
+      if (d < d_min) d_min = d, p_at_d_min = r->peak_axial_stress;
+      if (d > d_max) d_max = d, p_at_d_max = r->peak_axial_stress;
       p_min = std::min(p_min, r->peak_axial_stress), p_max = std::max(p_max, r->peak_axial_stress);
     }
     const Fit q = fit(quad, peak), a = fit(da, ratio), s = fit(slope, peak);
@@ -188,8 +200,8 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
       const bool scale_free = (p_max - p_min) / calibrate::mean(peak) < 0.02;
       off_text += scale_free
                       ? " The test is scale-free, as dimensional analysis says it must be when "
-                        "the stiffness scales with d and the inertial number is held: neither "
-                        "the size itself nor the loading rate makes the peak grow."
+                        "the stiffness scales with d and the inertial number is held: the size "
+                        "itself does not change the peak."
                       : (i_max > 2 * i_min
                              ? " The peak changes with d while the inertial number does: the "
                                "loading rate (inertia) makes it grow."
@@ -198,28 +210,37 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
                                "a trend.");
     } else {
       on_text = fmt::format(
-          " With gravity the peak rises from {:.1f} kPa at d = {:g} m to {:.1f} kPa at {:g} m, "
+          " With gravity the peak goes from {:.1f} kPa at d = {:g} m to {:.1f} kPa at {:g} m, "
           "where the self-weight ratio rho g H / sigma_3 reaches {:.3g}",
-          1e-3 * p_min, d_min, 1e-3 * p_max, d_max, ratio_per_metre * d_max);
+          1e-3 * p_at_d_min, d_min, 1e-3 * p_at_d_max, d_max, ratio_per_metre * d_max);
       if (a.ok)
         on_text += fmt::format(
-            "; sigma_peak / sigma_3 = {:.3f} + {:.3f} rho g H / sigma_3 (+- {:.2g}, R^2 {:.4f}): "
+            "; sigma_peak / sigma_3 = {:.3f} {:+.3f} rho g H / sigma_3 (+- {:.2g}, R^2 {:.4f}): "
             "{}",
             a.f.coefficients[0], a.f.coefficients[1], a.f.standard_error(1), a.r2,
             a.f.coefficients[1] > 2 * a.f.standard_error(1)
-                ? "the growth is the self-weight's."
-                : "self-weight does not raise the peak measurably.");
+                ? "self-weight raises the peak."
+                : (a.f.coefficients[1] < -2 * a.f.standard_error(1)
+                       ? "self-weight lowers the peak."
+                       : "self-weight does not change the peak measurably."));
       else
         on_text += ".";
-      published_text = fmt::format(
-          " The published fit (d in m, sigma in MPa) gives {:.4g} MPa at d = {:g} m, {:.3g} times "
-          "our peak with gravity there: self-weight at sigma_3 = {:.0f} kPa does not reproduce "
-          "Eq. 12.",
-          1e-6 * published_fit_Pa(d_max), d_max, published_fit_Pa(d_max) / p_max, 1e-3 * s3);
     }
   }
+  // The published fit against our largest size that gave a peak.
+  const ScaleRun* largest = nullptr;
+  for (const ScaleRun& r : runs)
+    if (r.status == "ok" && (!largest || r.diameter > largest->diameter)) largest = &r;
+  if (largest && largest->diameter >= 0.1)
+    published_text = fmt::format(
+        " The published fit (d in m, sigma in MPa) gives {:.4g} MPa at d = {:g} m, {:.3g} times "
+        "our peak there ({:.1f} kPa, gravity {}; sigma_3 = {:.0f} kPa, {}).",
+        1e-6 * published_fit_Pa(largest->diameter), largest->diameter,
+        published_fit_Pa(largest->diameter) / largest->peak_axial_stress,
+        1e-3 * largest->peak_axial_stress, largest->gravity > 0 ? "on" : "off", 1e-3 * s3,
+        f.loading);
   j["fits"] = fits;
-  const std::string explanation = off_text + on_text + published_text;
+  const std::string explanation = off_text + on_text + slump_text + published_text;
   j["explanation"] = explanation;
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   return explanation;
