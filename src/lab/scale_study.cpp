@@ -170,15 +170,24 @@ class ScaleStudy {
       fmt::print(stderr, "grainlab: warning: no scale.png: {}\n", e.what());
     }
     if (!options_.quiet) fmt::print("scale study: {}\n", explanation);
+    // A trend needs two sizes that gave a peak: a warning for a gravity setting without them,
+    // a failed study when no setting has them.
+    bool any_trend = false;
     for (bool gravity_on : c_.gravity_settings) {
       int usable = 0;
       for (const ScaleRun& r : runs) usable += (r.gravity > 0) == gravity_on && r.status == "ok";
+      any_trend |= usable >= 2;
       if (usable < 2)
-        throw UnreliableResult(fmt::format(
-            "fewer than two runs with gravity {} gave a peak: no trend can be read (see the "
-            "status column of {}/scale.csv)",
-            gravity_on ? "on" : "off", options_.out_dir));
+        fmt::print(stderr,
+                   "grainlab: warning: fewer than two runs with gravity {} gave a peak: no trend "
+                   "can be read there (see the status column of {}/scale.csv)\n",
+                   gravity_on ? "on" : "off", options_.out_dir);
     }
+    if (!any_trend)
+      throw UnreliableResult(fmt::format(
+          "no gravity setting has two runs that gave a peak: the study shows no trend (see the "
+          "status column of {}/scale.csv)",
+          options_.out_dir));
   }
 
  private:
