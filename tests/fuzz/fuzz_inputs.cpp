@@ -40,6 +40,7 @@
 #include "io/checkpoint_file.hpp"
 #include "lab/element_test.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/scale_study.hpp"
 #include "lab/specimen.hpp"
 #include "lab/triaxial.hpp"
 
@@ -298,6 +299,17 @@ int main(int argc, char** argv) {
                            } catch (const ConfigError&) {
                            }
                        element_test_scene(path, root);  // grainlab params
+                     }});
+  const std::vector<std::string> study_configs = [&] {
+    std::vector<std::string> out;
+    for (const char* d : {"examples/scale_study", "bench/scale_study"})
+      if (fs::exists(source / d))
+        for (const std::string& t : files_with_extension(source / d, ".toml")) out.push_back(t);
+    return out;
+  }();
+  targets.push_back({"scale_study_config", study_configs, true, [&](const std::string& in) {
+                       const std::string path = scratch.string() + ".toml";
+                       read_scale_study_config(path, parse_config(in, path));
                      }});
   targets.push_back({"scene_config", files_with_extension(source / "examples", ".toml"), true,
                      [&](const std::string& in) {
