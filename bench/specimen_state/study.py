@@ -29,6 +29,10 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFERENCE = os.path.join(HERE, "..", "..", "examples", "triaxial", "reference.toml")
 LAB_PEAK_PA, LAB_STRAIN_AT_PEAK, LAB_SOLID_FRACTION = 342.4e3, 0.0511, 0.583
+# The reference config as it is (walls frictional while preparing), when its state was not run by
+# this study: the recorded full run of docs/lab-tests.md ("The reference run", 15 % axial strain).
+RECORDED_REFERENCE = {"bulk_solid_fraction": 0.5799, "peak_axial_stress_kPa": 345.7,
+                      "axial_strain_at_peak_percent": 5.60}
 
 # name, [test] keys added to the reference config; ordered so that a study cut short still spans
 # the range (the measured friction first, then the two ends, then between).
@@ -172,6 +176,11 @@ def write_outputs(out_dir, results):
         for r in sel:
             a1.annotate(f"mu_c {r['compaction_friction']:.2f}", (r["bulk_solid_fraction"], r["peak_axial_stress_kPa"]),
                         fontsize=7, xytext=(3, 3), textcoords="offset points")
+    if not any(r["wall_friction_while_preparing"] for r in results):
+        ref = RECORDED_REFERENCE
+        label = "reference config: walls frictional while preparing (recorded run)"
+        a1.plot([ref["bulk_solid_fraction"]], [ref["peak_axial_stress_kPa"]], "s", color="C1", label=label)
+        a2.plot([ref["bulk_solid_fraction"]], [ref["axial_strain_at_peak_percent"]], "s", color="C1", label=label)
     a1.plot([LAB_SOLID_FRACTION], [1e-3 * LAB_PEAK_PA], "k*", ms=12, label="laboratory (342.4 kPa, bulk 0.583)")
     a2.plot([LAB_SOLID_FRACTION], [100 * LAB_STRAIN_AT_PEAK], "k*", ms=12, label="laboratory (5.11 %)")
     for a, ylabel in ((a1, "peak axial stress [kPa]"), (a2, "axial strain at peak [%]")):
