@@ -576,7 +576,10 @@ def plane_strain_bad_input():
                                  ("compaction_strain_rate", "0", "(0, 1000]"),
                                  ("compaction_strain_rate", "1e9", "(0, 1000]"),
                                  ("preparation_max_time", '"0 s"', "(0, 100]"),
-                                 ("preparation_max_time", '"1e6 s"', "(0, 100]")):
+                                 ("preparation_max_time", '"1e6 s"', "(0, 100]"),
+                                 ("re_equilibration_max_time", '"0 s"', "> 0 s"),
+                                 ("re_equilibration_max_time", '"1e9 s"', "steps"),
+                                 ("gravity", '"-9.81 m/s^2"', "[0, 1000]")):
         expect_bad_plane_strain('type = "plane_strain"', f'type = "plane_strain"\n{key} = {value}', key, fragment)
 
 
