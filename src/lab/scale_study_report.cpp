@@ -184,14 +184,18 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
     if (q.ok)
       at_2mm["published_form"] = extrapolation_json(
           predict(q, {reference_diameter * reference_diameter, reference_diameter, 1.0}));
-    if (a.ok) {
+    const bool rate_varies = i_max > 2 * i_min;
+    if (a.ok && (on || !rate_varies)) {
       auto p = predict(a, on ? std::vector<double>{1.0, ratio_per_metre * reference_diameter}
                              : std::vector<double>{1.0});
       at_2mm["dimensional_form"] = extrapolation_json({s3 * p.first, s3 * p.second});
     }
+    if (rate_varies && !on)  // a constant does not describe a peak that follows I
+      g["dimensional_form"] = {{"form",
+                                "not applicable: the inertial number changes with d (see "
+                                "inertial_form)"}};
     // The loading rate: when the inertial number changes with d (a fixed strain rate makes it
     // grow in proportion to d), the dimensional form is a function of I.
-    const bool rate_varies = i_max > 2 * i_min;
     Fit in;
     if (rate_varies && !on) {
       in = fit(inertial, ratio);
