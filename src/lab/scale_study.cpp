@@ -326,10 +326,11 @@ class ScaleStudy {
       if (escaped > 0)
         r.status = fmt::format("{} beads escaped through the membrane", escaped);
       else if (!j["re_equilibration"]["reached"].get<bool>())
-        r.status = r.gravity > 0
-                       ? "not at rest before the loading: the specimen slumps under its own weight "
-                         "at this confining stress"
-                       : "not at rest before the loading: the re-equilibration did not converge";
+        r.status =
+            r.gravity > 0
+                ? "not at rest before the loading: the specimen was still settling under its "
+                  "own weight when the re-equilibration's time ran out"
+                : "not at rest before the loading: the re-equilibration did not converge";
       else
         r.status = "ok";
     }

@@ -135,8 +135,8 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
         slumped.push_back(fmt::format("{:g}", r.diameter));
     if (!slumped.empty())
       slump_text = fmt::format(
-          " At d = {} m the specimen cannot stand under its own weight at sigma_3 = {:.0f} kPa "
-          "(it slumps before the loading; those runs are flagged and left out of the fits).",
+          " At d = {} m the specimen was still settling under its own weight at sigma_3 = {:.0f} "
+          "kPa when the loading began (flagged, left out of the fits).",
           fmt::join(slumped, ", "), 1e-3 * s3);
   }
   nlohmann::json fits = nlohmann::json::object();
