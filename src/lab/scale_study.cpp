@@ -281,7 +281,12 @@ class ScaleStudy {
     r.name = name;
     r.diameter = d;
     r.gravity = gravity_on ? c_.gravity : 0.0;
-    if (!fs::exists(run_dir + "/summary.json")) {
+    // A run that failed before (its cause in failure.txt) is not run again: it would fail the same
+    // way (the runs are deterministic).
+    const std::string failure = run_dir + "/failure.txt";
+    if (!fs::exists(run_dir + "/summary.json") && fs::exists(failure)) {
+      r.status = read_text(failure);
+    } else if (!fs::exists(run_dir + "/summary.json")) {
       RunOptions sub = options_;
       sub.out_dir = run_dir;
       sub.overwrite = false;
@@ -299,6 +304,7 @@ class ScaleStudy {
         r.status = e.what();
       } catch (const BlowUpError& e) {
         r.status = e.what();
+        write_file_atomically(failure, r.status);
       }
     }
     read_run(run_dir + "/summary.json", r);
