@@ -133,8 +133,17 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
     for (const ScaleRun& r : runs)
       if (r.gravity > 0 && r.status.rfind("not at rest", 0) == 0)
         slumped.push_back(fmt::format("{:g}", r.diameter));
+    std::vector<std::string> stopped;
+    for (const ScaleRun& r : runs)
+      if (r.gravity > 0 && r.status.rfind("the run blew up", 0) == 0)
+        stopped.push_back(fmt::format("{:g}", r.diameter));
+    if (!stopped.empty())
+      slump_text += fmt::format(
+          " With gravity at d = {} m the runs stopped before a peak: beads passed the speed "
+          "limit as the specimen gave way under its own weight (status column).",
+          fmt::join(stopped, ", "));
     if (!slumped.empty())
-      slump_text = fmt::format(
+      slump_text += fmt::format(
           " At d = {} m the specimen was still settling under its own weight at sigma_3 = {:.0f} "
           "kPa when the loading began (flagged, left out of the fits).",
           fmt::join(slumped, ", "), 1e-3 * s3);
