@@ -63,7 +63,7 @@ struct OutputSettings {
   std::vector<uint32_t> trace_ids;  // when not trace_all
   bool vtk = false;
   double vtk_interval = 0.0;           // s
-  double checkpoint_interval = 300.0;  // s of wall time between checkpoints
+  double checkpoint_interval = 60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
 };
 
 struct SceneConfig {
