@@ -248,11 +248,12 @@ std::string write_scale_study_report(const std::vector<ScaleRun>& runs, const Sc
                              1e-3 * s.f.coefficients[1], 1e-3 * s.f.standard_error(1))
                : "",
           i_min, i_max);
-      // Scale-free: no significant trend against d (the slope within two standard errors of 0);
-      // the scatter left is rounding amplified by the packing's chaos (sizes a power of two
-      // apart scale exactly in floating point and give the same peak).
-      const bool scale_free = s.ok ? std::abs(s.f.coefficients[1]) < 2 * s.f.standard_error(1)
-                                   : (p_max - p_min) / calibrate::mean(peak) < 0.02;
+      // Scale-free: the peaks within 2 % of each other, or no significant trend against d (the
+      // slope within two standard errors of 0); the scatter left is rounding amplified by the
+      // packing's chaos (sizes a power of two apart scale exactly in floating point and give the
+      // same peak, so a few runs can show a "significant" slope of a fraction of a percent).
+      const bool scale_free = (p_max - p_min) / calibrate::mean(peak) < 0.02 ||
+                              (s.ok && std::abs(s.f.coefficients[1]) < 2 * s.f.standard_error(1));
       off_text += scale_free
                       ? " No trend with d: the test is scale-free, as dimensional analysis says it "
                         "must be when the stiffness scales with d and the inertial number is "
