@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/config_error.hpp"
@@ -16,6 +17,13 @@
 
 namespace grainlab {
 namespace fs = std::filesystem;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   record_output(path);

@@ -13,6 +13,9 @@
 
 namespace grainlab {
 
+// The whole content of the file at `path` ("" when it cannot be read).
+std::string read_file(const std::string& path);
+
 // Writes `content` to `path` via a temporary file and rename, so a reader never sees half a file.
 void write_file_atomically(const std::string& path, const std::string& content);
 

@@ -62,8 +62,9 @@ struct OutputSettings {
   bool trace_all = true;
   std::vector<uint32_t> trace_ids;  // when not trace_all
   bool vtk = false;
-  double vtk_interval = 0.0;           // s
-  double checkpoint_interval = 60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
+  double vtk_interval = 0.0;  // s
+  double checkpoint_interval =
+      60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
 };
 
 struct SceneConfig {

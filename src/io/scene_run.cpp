@@ -43,13 +43,6 @@ struct SceneProgress {
   long trace_bytes = 0, walls_bytes = 0;  // lengths of the .partial CSVs at the checkpoint
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Everything a scene run builds from its config, checked before anything is written.
 struct SceneSetup {
   SceneConfig config;
@@ -249,7 +242,7 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
 void run_scene(const std::string& config_path, const RunOptions& options) {
   // Everything that can be wrong with the input is found before anything is written.
   SceneSetup setup = set_up(config_path);
-  const std::string config_text = read_text(config_path);
+  const std::string config_text = read_file(config_path);
   prepare_output_dir(options.out_dir, options.overwrite);
   install_interrupt_handler();
   run(config_path, config_text, std::move(setup), options, nullptr);
@@ -267,7 +260,7 @@ void resume_scene(const RunOptions& options) {
   StateReader in = open_checkpoint(file, scene_magic, scene_kind, header);
   // The run continues with the config it started from: a changed or missing file is refused.
   if (!std::filesystem::exists(header.config_path) ||
-      read_text(header.config_path) != header.config_text)
+      read_file(header.config_path) != header.config_text)
     throw ConfigError(fmt::format(
         "{}: the run started from {}, which {}; resume needs the config it started from "
         "(restore it, or start a new run)",

@@ -136,28 +136,7 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
   s.checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time, s.checkpoint_interval);
   if (!(s.checkpoint_interval > 0))
     t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
-  if (t.has("laboratory")) {
-    const toml::table* lab = t.node("laboratory")->as_table();
-    if (!lab)
-      t.fail("laboratory",
-             "expected a table [test.laboratory] with peak_axial_stress (and optionally "
-             "axial_strain_at_peak, published_dem_peak_axial_stress, source)");
-    TableReader l(*lab, path, "test.laboratory");
-    LaboratoryValues v;
-    v.peak_axial_stress = l.number("peak_axial_stress", Quantity::pressure);
-    if (!(v.peak_axial_stress > 0))
-      l.fail("peak_axial_stress", "expected the laboratory's peak axial stress > 0 Pa");
-    v.axial_strain_at_peak = l.optional_number("axial_strain_at_peak", Quantity::dimensionless);
-    if (v.axial_strain_at_peak && !(*v.axial_strain_at_peak > 0 && *v.axial_strain_at_peak < 0.5))
-      l.fail("axial_strain_at_peak", "expected a strain in (0, 0.5)");
-    v.published_dem_peak_axial_stress =
-        l.optional_number("published_dem_peak_axial_stress", Quantity::pressure);
-    if (v.published_dem_peak_axial_stress && !(*v.published_dem_peak_axial_stress > 0))
-      l.fail("published_dem_peak_axial_stress", "expected a peak axial stress > 0 Pa");
-    v.source = l.string_or("source", "laboratory");
-    l.finish();
-    s.laboratory = v;
-  }
+  s.laboratory = read_laboratory_values(path, t);
   s.re_equilibration_max_time =
       t.number_or("re_equilibration_max_time", Quantity::time, s.re_equilibration_max_time);
   if (!(s.re_equilibration_max_time > 0 && std::isfinite(s.re_equilibration_max_time)))
@@ -256,38 +235,6 @@ double curve_slope(const std::vector<std::vector<double>>& rows, int x, int y,
   return design.size() >= 3 ? calibrate::least_squares(design, values).coefficients[1] : NAN;
 }
 
-LaboratoryComparison compare_with_laboratory(const ElementTestSettings& s, double peak_axial_stress,
-                                             double axial_strain_at_peak) {
-  LaboratoryComparison out;
-  if (!s.laboratory) return out;
-  const LaboratoryValues& lab = *s.laboratory;
-  out.json = {{"source", lab.source},
-              {"laboratory_peak_axial_stress_Pa", lab.peak_axial_stress},
-              {"difference_to_laboratory", peak_axial_stress / lab.peak_axial_stress - 1.0}};
-  out.text = fmt::format("; laboratory {:.2f} kPa", 1e-3 * lab.peak_axial_stress);
-  if (lab.axial_strain_at_peak) {
-    out.json["laboratory_axial_strain_at_peak"] = *lab.axial_strain_at_peak;
-    out.json["strain_at_peak_difference_to_laboratory"] =
-        axial_strain_at_peak / *lab.axial_strain_at_peak - 1.0;
-    out.text += fmt::format(" at {:.2f} % (stress {:+.1f} %, strain at peak {:+.1f} %)",
-                            100 * *lab.axial_strain_at_peak,
-                            100 * (peak_axial_stress / lab.peak_axial_stress - 1.0),
-                            100 * (axial_strain_at_peak / *lab.axial_strain_at_peak - 1.0));
-  } else {
-    out.text +=
-        fmt::format(" ({:+.1f} %)", 100 * (peak_axial_stress / lab.peak_axial_stress - 1.0));
-  }
-  if (lab.published_dem_peak_axial_stress) {
-    out.json["published_dem_peak_axial_stress_Pa"] = *lab.published_dem_peak_axial_stress;
-    out.json["difference_to_published_dem"] =
-        peak_axial_stress / *lab.published_dem_peak_axial_stress - 1.0;
-    out.text += fmt::format(", published DEM {:.2f} kPa ({:+.1f} %)",
-                            1e-3 * *lab.published_dem_peak_axial_stress,
-                            100 * (peak_axial_stress / *lab.published_dem_peak_axial_stress - 1.0));
-  }
-  return out;
-}
-
 void add_vtk_snapshot(ElementRun& run, const std::string& dir, long step,
                       const std::string& particles_vtu, const std::string& walls_vtu) {
   std::filesystem::create_directories(dir + "/vtk");
@@ -360,15 +307,6 @@ nlohmann::json loading_json(const LoadingRate& rate, const ElementTestSettings& 
           {"max_inertial_number_bound", s.max_inertial_number}};
 }
 
-namespace {
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
-
 ElementRun start_element_test(const std::string& type, const std::string& path,
                               const toml::table& root, const ElementTestConfig& c,
                               const std::string& out_dir, Progress& progress,
@@ -378,7 +316,7 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   const auto wall_start = std::chrono::steady_clock::now();
   // The preparation checkpoints every checkpoint_interval (preparation.bin), and a resumed run
   // continues it with the config text stored there.
-  const std::string config_text = resumed_config.empty() ? read_text(path) : resumed_config;
+  const std::string config_text = resumed_config.empty() ? read_file(path) : resumed_config;
   const PreparationCheckpoints checkpoints{out_dir + "/preparation.bin",
                                            s.checkpoint_interval,
                                            {type, path, config_text},

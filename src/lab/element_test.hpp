@@ -28,19 +28,10 @@
 #include "io/scene_config.hpp"
 #include "io/scene_run.hpp"
 #include "io/toml_reader.hpp"
+#include "lab/laboratory.hpp"
 #include "lab/specimen.hpp"
 
 namespace grainlab {
-
-// Laboratory values a shear test's result is compared with ([test.laboratory]); without them a run
-// reports its own result only, since a specimen that is not the laboratory's has nothing to be
-// compared with.
-struct LaboratoryValues {
-  double peak_axial_stress = 0.0;                         // Pa
-  std::optional<double> axial_strain_at_peak;             // -
-  std::optional<double> published_dem_peak_axial_stress;  // Pa, another simulation's peak
-  std::string source;                                     // where the values come from, for legends
-};
 
 struct ElementTestSettings {
   SpecimenSettings specimen;
@@ -50,7 +41,8 @@ struct ElementTestSettings {
   double output_strain_interval = 0.001;
   bool vtk = false;
   double vtk_strain_interval = 0.01;
-  double checkpoint_interval = 60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
+  double checkpoint_interval =
+      60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
   // s simulated, at most, for the re-equilibration under the confining stress before the loading
   double re_equilibration_max_time = 0.02;
   // m/s^2 along -z from the re-equilibration on (the specimen is prepared without it); only the
@@ -58,15 +50,6 @@ struct ElementTestSettings {
   double gravity = 0.0;
   std::optional<LaboratoryValues> laboratory;
 };
-
-// The "reference" entry of a shear test's summary.json (the laboratory values and the differences
-// to them) and the comparison's words for the run's last line ("" without [test.laboratory]).
-struct LaboratoryComparison {
-  nlohmann::json json;
-  std::string text;
-};
-LaboratoryComparison compare_with_laboratory(const ElementTestSettings& s, double peak_axial_stress,
-                                             double axial_strain_at_peak);
 
 // A test config read: materials and pairs, the pair table and the shared settings.
 struct ElementTestConfig {

@@ -172,7 +172,7 @@ void finish(const ElementRun& run, const PlaneStrainProgress& p, const ElementTe
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
-  const LaboratoryComparison lab = compare_with_laboratory(s, s1, p.peak_strain);
+  const LaboratoryComparison lab = compare_with_laboratory(s.laboratory, s1, p.peak_strain);
   if (s.laboratory) j["reference"] = lab.json;
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot(dir);

@@ -25,13 +25,6 @@ namespace {
 
 constexpr const char* stored_config_name = "scale_study.toml";
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // A length in SI with its unit, round-trip exact, for a generated config.
 std::string metres(double v) {
   return exact(v) + " m";
@@ -224,7 +217,7 @@ class ScaleStudy {
     fs::create_directories(specimen_dir);
     const PreparationCheckpoints checkpoints{specimen_dir + "/preparation.bin",
                                              s.checkpoint_interval,
-                                             {"scale_study", stored_path_, read_text(stored_path_)},
+                                             {"scale_study", stored_path_, read_file(stored_path_)},
                                              fs::exists(specimen_dir + "/preparation.bin")};
     Progress progress("grainlab scale study: preparing", options_.quiet);
     const Specimen prepared = prepare_cuboid_specimen(sp, c_.base.table, &progress, &checkpoints);
@@ -285,7 +278,7 @@ class ScaleStudy {
     // way (the runs are deterministic).
     const std::string failure = run_dir + "/failure.txt";
     if (!fs::exists(run_dir + "/summary.json") && fs::exists(failure)) {
-      r.status = read_text(failure);
+      r.status = read_file(failure);
     } else if (!fs::exists(run_dir + "/summary.json")) {
       RunOptions sub = options_;
       sub.out_dir = run_dir;
@@ -316,8 +309,7 @@ class ScaleStudy {
       if (r.status.empty()) r.status = "no summary.json";
       return;
     }
-    const nlohmann::json j = nlohmann::json::parse(read_text(file));
-    r.finished = true;
+    const nlohmann::json j = nlohmann::json::parse(read_file(file));
     r.particles = j["specimen"]["particles"].get<long>();
     const auto& size = j["initial_size_m"];
     r.size = {size["width"].get<double>(), size["thickness"].get<double>(),
@@ -366,7 +358,7 @@ void run_scale_study(const std::string& path, const toml::table& root, const Run
   prepare_output_dir(options.out_dir, options.overwrite);
   // The config is kept with the results: a resume needs nothing else.
   const std::string stored = options.out_dir + "/" + stored_config_name;
-  write_file_atomically(stored, read_text(path));
+  write_file_atomically(stored, read_file(path));
   ScaleStudy(c, stored, options).run();
 }
 

@@ -17,7 +17,6 @@ struct ScaleRun {
   std::string name;       // its subdirectory
   double diameter = 0.0;  // m
   double gravity = 0.0;   // m/s^2 (0: off)
-  bool finished = false;  // summary.json written
   std::string status;     // "ok", or what went wrong
   long particles = 0;
   Vec3 size;                       // m: width, thickness, height at the start of the loading

@@ -46,7 +46,8 @@ void finish_triaxial(const ElementRun& run, const ShearProgress& p, const Elemen
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
-  const LaboratoryComparison lab = compare_with_laboratory(s, p.peak_axial, p.peak_strain);
+  const LaboratoryComparison lab =
+      compare_with_laboratory(s.laboratory, p.peak_axial, p.peak_strain);
   if (s.laboratory) j["reference"] = lab.json;
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
   plot_triaxial_curve(dir);

@@ -133,7 +133,8 @@ TEST(SpecimenStresses, BeadSqueezedInABoxGivesWallForceOverArea) {
   const double area_x = 4 * half.y * half.z, area_z = 4 * half.x * half.y;
   const double fx = norm(sim.walls()[x_low].force), fz = norm(sim.walls()[top].force);
   ASSERT_GT(fx, 0.0);
-  // k_n = pi E r* with r* = r on a wall (docs/contact-model.md); the bead is at rest, so no damping.
+  // k_n = pi E r* with r* = r on a wall (docs/contact-model.md); the bead is at rest, so no
+  // damping.
   EXPECT_NEAR(fz, M_PI * 46.2e9 * r * overlap_z, 1e-6 * fz);
   EXPECT_NEAR(fx, M_PI * 46.2e9 * r * overlap_x, 1e-6 * fx);
   for (const Tensor3& s : {lw, boundary}) {
