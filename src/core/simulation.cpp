@@ -168,14 +168,18 @@ void Simulation::check_health() const {
   const double max_speed = settings_.max_speed;
   if (!(max_speed2_ <= max_speed * max_speed)) {
     const bool nan = std::isinf(max_speed2_) || std::isnan(max_speed2_);
+    const bool scene = settings_.step_key == SimulationSettings::StepKey::scene;
     throw BlowUpError(fmt::format(
-        "the run blew up at t = {:.6g} s (step {}): {}. The time step ({:.3g} s) is too large for "
-        "the contact stiffness; lower {}, or check the initial velocities and wall speeds.",
+        "the run blew up at t = {:.6g} s (step {}): {}. Either the time step ({:.3g} s) is too "
+        "large for the contact stiffness (lower {}), or the particles were driven that fast: "
+        "check the initial velocities, the wall speeds and loads, and gravity{}.",
         time_, step_count_,
         nan ? std::string("a particle velocity became NaN")
-            : fmt::format("a particle reached {:.3g} m/s, above simulation.max_speed = {:.3g} m/s",
-                          std::sqrt(max_speed2_), max_speed),
-        settings_.time_step, step_key()));
+            : fmt::format("a particle reached {:.3g} m/s, above {} = {:.3g} m/s",
+                          std::sqrt(max_speed2_),
+                          scene ? "simulation.max_speed" : "the test's speed limit", max_speed),
+        settings_.time_step, step_key(),
+        scene ? " (or raise simulation.max_speed if such speeds are real)" : ""));
   }
   if (max_overlap_fraction_ > settings_.max_overlap_fraction) {
     throw BlowUpError(fmt::format(

@@ -41,6 +41,12 @@ std::string read_sealed(const std::string& path) {
   return bytes;
 }
 
+bool has_checkpoint_magic(const std::string& path, uint64_t magic) {
+  std::ifstream in(path, std::ios::binary);
+  uint64_t first = 0;
+  return in.read(reinterpret_cast<char*>(&first), sizeof first) && first == magic;
+}
+
 void write_checkpoint_header(StateWriter& out, uint64_t magic, const CheckpointHeader& header) {
   out.value(magic);
   out.text(header.type);

@@ -22,6 +22,9 @@ void write_sealed(StateWriter& out, const std::string& path);
 // missing, truncated or damaged.
 std::string read_sealed(const std::string& path);
 
+// Whether the file at `path` starts with `magic` (a checkpoint of that kind; not verified).
+bool has_checkpoint_magic(const std::string& path, uint64_t magic);
+
 // What every checkpoint starts with, after its kind's magic number: the test type and the config
 // (path and text) the run was started from, so that a resume needs nothing but the file.
 struct CheckpointHeader {

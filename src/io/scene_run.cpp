@@ -14,6 +14,7 @@
 #include "contact/time_step.hpp"
 #include "core/simulation.hpp"
 #include "grainlab/version.hpp"
+#include "io/checkpoint_clock.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/config_error.hpp"
 #include "io/derived_report.hpp"
@@ -106,7 +107,8 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
       throw ConfigError(fmt::format("{}/checkpoint.bin: damaged checkpoint ({})", dir, e.what()));
     }
   }
-  const auto session_start = std::chrono::steady_clock::now();
+  // The interrupt flag is looked at every step, the wall clock every 1024.
+  CheckpointClock clock(config.output.checkpoint_interval, 1024);
   Simulation sim = restored ? std::move(*restored)
                             : Simulation(std::move(setup.particles), config.walls,
                                          std::move(setup.table), setup.settings);
@@ -164,13 +166,9 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
     }
   };
 
-  const auto session_time = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
-  };
-  auto last_checkpoint = std::chrono::steady_clock::now();
   const auto checkpoint = [&] {
     SceneProgress now = p;
-    now.wall_time_before += session_time();
+    now.wall_time_before += clock.session_time();
     now.trace_bytes = trace.flushed_bytes();
     now.walls_bytes = walls_csv ? walls_csv->flushed_bytes() : 0;
     StateWriter out;
@@ -181,7 +179,6 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
     out.array(wall_servos.integrals());
     sim.save_state(out);
     write_sealed(out, dir + "/checkpoint.bin");
-    last_checkpoint = std::chrono::steady_clock::now();
   };
 
   Progress progress("grainlab run", options.quiet);
@@ -195,17 +192,13 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
     if (vtk_due) ++p.next_vtk;
     if (trace_due || vtk_due) write_outputs(p.step, trace_due, vtk_due);
     if (p.step == total_steps) break;
-    if (interrupt_requested()) {
-      checkpoint();
-      throw Interrupted(
-          fmt::format("interrupted at t = {:.6g} s; checkpoint written, continue with: grainlab "
-                      "run --resume {}",
-                      sim.time(), dir));
-    }
+    clock.poll(checkpoint, [&] {
+      return fmt::format(
+          "interrupted at t = {:.6g} s; checkpoint written, continue with: "
+          "grainlab run --resume {}",
+          sim.time(), dir);
+    });
     if ((p.step & 1023) == 0) {
-      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
-              .count() >= config.output.checkpoint_interval)
-        checkpoint();
       progress.update(static_cast<double>(p.step) / total_steps,
                       fmt::format("t = {:.4g} s", sim.time()));
     }
@@ -213,7 +206,7 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
   }
   trace.close();
   if (walls_csv) walls_csv->close();
-  const double wall_time = p.wall_time_before + session_time();
+  const double wall_time = p.wall_time_before + clock.session_time();
   write_file_atomically(dir + "/final.csv", final_table(sim.particles()));
 
   nlohmann::json summary = summary_header(config_path, &config.source);
@@ -249,9 +242,7 @@ void run_scene(const std::string& config_path, const RunOptions& options) {
 }
 
 bool is_scene_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  uint64_t magic = 0;
-  return in.read(reinterpret_cast<char*>(&magic), sizeof magic) && magic == scene_magic;
+  return has_checkpoint_magic(path, scene_magic);
 }
 
 void resume_scene(const RunOptions& options) {

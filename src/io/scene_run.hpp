@@ -11,9 +11,10 @@ struct RunOptions {
   bool overwrite = false;
   int threads = 0;  // 0: OpenMP's default
   bool quiet = false;
-  // Element tests: continue the preparation checkpointed in out_dir (grainlab run --resume), with
-  // the config text stored there; empty for a fresh run.
-  std::string resumed_preparation_config;
+  // grainlab run --resume: the config text stored in out_dir's checkpoint, which the run
+  // continues (an element test's preparation.bin, a sliding-friction test's checkpoint.bin);
+  // empty for a fresh run.
+  std::string resumed_config;
 };
 
 // Throws ConfigError for bad input (nothing is written then), BlowUpError if the run blows up.

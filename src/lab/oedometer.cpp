@@ -157,6 +157,11 @@ OedometerConfig read_oedometer_config(const std::string& path, const toml::table
   if (!(c.unload_stress > 0 && c.unload_stress < c.max_axial_stress))
     t.fail("unload_stress", "expected a stress in (0, max_axial_stress)");
   c.max_axial_strain = read_max_axial_strain(c, c.max_axial_strain, 2, t);
+  // The oedometer has no peak to compare: laboratory values would be ignored without a word.
+  if (c.settings.laboratory)
+    t.fail("laboratory",
+           "the oedometer test compares no result with laboratory values (a peak and its strain "
+           "are compared by the triaxial and plane strain tests)");
   t.finish();
   return c;
 }

@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 
@@ -18,9 +19,9 @@
 #include "core/random_insertion.hpp"
 #include "core/simulation.hpp"
 #include "geometry/cuboid_box.hpp"
+#include "io/checkpoint_clock.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/config_error.hpp"
-#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "lab/specimen.hpp"
@@ -294,28 +295,20 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
   out.target_reached = st.target_reached;
 
   // Checkpoints every interval of wall time, and on Ctrl-C (then Interrupted).
-  const auto session_start = std::chrono::steady_clock::now();
-  auto last_save = session_start;
+  CheckpointClock clock(checkpoints ? checkpoints->interval_s
+                                    : std::numeric_limits<double>::infinity());
   const auto save = [&] {
     if (!checkpoints) return;
     PrepState now = st;
-    now.wall_time_before +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
+    now.wall_time_before += clock.session_time();
     save_preparation(*checkpoints, now, sim);
-    last_save = std::chrono::steady_clock::now();
   };
   const auto after_check = [&] {
-    if (interrupt_requested()) {
-      save();
-      throw Interrupted(
-          checkpoints ? "interrupted while preparing the specimen: saved; grainlab run --resume "
-                        "DIR continues"
-                      : "interrupted while preparing the specimen: nothing was saved");
-    }
-    if (checkpoints &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_save).count() >=
-            checkpoints->interval_s)
-      save();
+    clock.poll(save, [&] {
+      return checkpoints ? "interrupted while preparing the specimen: saved; grainlab run --resume "
+                           "DIR continues"
+                         : "interrupted while preparing the specimen: nothing was saved";
+    });
   };
 
   const char* stage = st.stage == PrepStage::compacting ? "compacting" : "preparing";

@@ -15,6 +15,7 @@
 #include "lab/plane_strain.hpp"
 #include "lab/scale_study.hpp"
 #include "lab/sliding_friction.hpp"
+#include "lab/sliding_friction_checkpoint.hpp"
 #include "lab/triaxial.hpp"
 
 namespace grainlab {
@@ -96,6 +97,17 @@ void resume_lab_test(const RunOptions& options) {
   }
   const std::string checkpoint = options.out_dir + "/checkpoint.bin";
   const std::string preparation = options.out_dir + "/preparation.bin";
+  if (SlidingFrictionCheckpoints::is_one(checkpoint)) {
+    // The test replays with its stored config and takes what was done from the checkpoint.
+    const CheckpointHeader h = SlidingFrictionCheckpoints::peek(checkpoint);
+    const toml::table root = stored_config(checkpoint, h);
+    if (h.type != "sliding_friction" || entry_for(h.config_path, root).type != h.type)
+      throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, h.type));
+    RunOptions resumed = options;
+    resumed.resumed_config = h.config_text;
+    run_sliding_friction(h.config_path, root, resumed);
+    return;
+  }
   if (!std::filesystem::exists(checkpoint) && std::filesystem::exists(preparation)) {
     // Killed before the loading's first checkpoint: the preparation continues, then the run.
     const CheckpointHeader h = peek_preparation_checkpoint(preparation);
@@ -104,7 +116,7 @@ void resume_lab_test(const RunOptions& options) {
     if (h.type != e.type || !e.element_config)
       throw ConfigError(fmt::format("{}: a {} preparation cannot be resumed", preparation, h.type));
     RunOptions resumed = options;
-    resumed.resumed_preparation_config = h.config_text;
+    resumed.resumed_config = h.config_text;
     e.run(h.config_path, root, resumed);
     return;
   }
@@ -135,11 +147,15 @@ ElementTestConfig element_config_of(const std::string& path, const toml::table& 
 }  // namespace
 
 ElementTestScene element_test_scene(const std::string& path, const toml::table& root) {
+  // A scale study's constants are those of its plane strain test at the base diameter (where
+  // its specimen is prepared; every other run is that specimen scaled).
   const ElementTestConfig c =
-      element_config_of(path, root,
-                        "grainlab params shows the constants of scenes and element tests "
-                        "(triaxial, oedometer, plane_strain), "
-                        "not of a {} test");
+      entry_for(path, root).type == std::string_view("scale_study")
+          ? ElementTestConfig(read_scale_study_config(path, root).base)
+          : element_config_of(path, root,
+                              "grainlab params shows the constants of scenes, element tests "
+                              "(triaxial, oedometer, plane_strain) and scale studies, "
+                              "not of a {} test");
   const SpecimenSettings& sp = c.settings.specimen;
   ElementTestScene out{c.scene, {}};
   out.scene.dt_fraction = sp.dt_fraction;

@@ -10,8 +10,10 @@
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
+#include "io/config_error.hpp"
 #include "io/progress.hpp"
 #include "lab/deposition.hpp"
+#include "lab/sliding_friction_checkpoint.hpp"
 
 namespace grainlab {
 namespace {
@@ -73,6 +75,29 @@ Bed fixed_bead_patch(const SlidingFrictionSettings& s, int bead, double density)
   return bed;
 }
 
+// The box of a deposited bed: floor, ends and sides, of the bead material.
+std::vector<Wall> bed_walls(const SlidingFrictionSettings& s, int bead) {
+  const double L = s.bed_length, W = s.bed_width;
+  return {box_plane(bead, {0, 0, 0}, {0, 0, 1}), box_plane(bead, {0, 0, 0}, {1, 0, 0}),
+          box_plane(bead, {L, 0, 0}, {-1, 0, 0}), box_plane(bead, {0, 0, 0}, {0, 1, 0}),
+          box_plane(bead, {0, W, 0}, {0, -1, 0})};
+}
+
+// A pull's simulation restored from a checkpoint; ConfigError naming the file when the state is
+// damaged or is not a bed with its slider (`wall_count` walls).
+Simulation restored_pull(const PullState& pull, const PairTable& table, size_t wall_count,
+                         const std::string& file) {
+  try {
+    StateReader in(pull.simulation);
+    Simulation sim(in, table);
+    if (!in.at_end() || sim.walls().size() != wall_count)
+      throw std::runtime_error("not the state of a pull");
+    return sim;
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", file, e.what()));
+  }
+}
+
 Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead, double density) {
   if (s.fixed_bed) return fixed_bead_patch(s, bead, density);
   const double d = s.diameter, L = s.bed_length, W = s.bed_width;
@@ -91,9 +116,7 @@ Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead,
   for (size_t i = 0; i < spheres.size(); ++i)
     bed.particles.add(static_cast<uint32_t>(i), bead, spheres[i].radius, density, spheres[i].centre,
                       {}, {}, false);
-  bed.walls = {box_plane(bead, {0, 0, 0}, {0, 0, 1}), box_plane(bead, {0, 0, 0}, {1, 0, 0}),
-               box_plane(bead, {L, 0, 0}, {-1, 0, 0}), box_plane(bead, {0, 0, 0}, {0, 1, 0}),
-               box_plane(bead, {0, W, 0}, {0, -1, 0})};
+  bed.walls = bed_walls(s, bead);
   DepositionSettings dep;
   dep.min_time = std::sqrt(2.0 * insert_height / s.gravity);
   dep.max_time = dep.min_time + 0.2;
@@ -109,7 +132,8 @@ Bed make_bed(const SlidingFrictionSettings& s, const PairTable& table, int bead,
 }
 
 LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const PairTable& table,
-                    int bead, int slider_material, double density, double load) {
+                    int bead, int slider_material, double density, double load,
+                    SlidingFrictionCheckpoints* checkpoints) {
   const double d = s.diameter, W = s.bed_width;
   const double slider_length = s.slider_length;
   Wall slider;
@@ -126,14 +150,19 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   std::vector<Wall> walls = bed.walls;
   walls.push_back(slider);
   const size_t k = walls.size() - 1;
-  Simulation sim(bed.particles, walls, table, settings_for(s, table, bead, density));
+  const double friction = table(bead, slider_material).friction;
+  std::optional<PullState> resumed =
+      checkpoints ? checkpoints->take_pull(friction, load) : std::nullopt;
+  Simulation sim =
+      resumed ? restored_pull(*resumed, table, walls.size(), checkpoints->path())
+              : Simulation(bed.particles, walls, table, settings_for(s, table, bead, density));
 
   // The rope and force sensor: a spring with a parallel dashpot that damps the slider-rope
   // oscillator critically (c = 2 sqrt(k m)), as the slow laboratory pull is quasi-static; the
   // slider runs on a guide (no sideways motion).
   const double rope_damping = 2.0 * std::sqrt(s.spring_stiffness * s.slider_mass);
-  double anchor = sim.walls()[k].point.x, anchor_speed = 0.0;
-  const double guide_y = sim.walls()[k].point.y;
+  double anchor = resumed ? resumed->anchor : slider.point.x, anchor_speed = 0.0;
+  const double guide_y = slider.point.y;
   auto step = [&] {
     const Wall& w = sim.walls()[k];
     sim.set_wall_external_force(k, {s.spring_stiffness * (anchor - w.point.x) +
@@ -147,18 +176,33 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   // Load: the slider settles on the bed under P with the rope anchored where it starts.
   const double dt = sim.settings().time_step;
   const long chunk = std::max(1L, static_cast<long>(2e-4 / dt));
-  while (sim.time() < 0.03) {
-    for (long i = 0; i < chunk; ++i) step();
-    if (sim.time() > 0.002 && std::abs(sim.walls()[k].velocity.z) < 1e-4) break;
-  }
-  // Pull: the far end of the rope moves at V; the rope force is the spring's extension.
   LoadRun run;
   run.load = load;
-  const double start_anchor = anchor, t0 = sim.time();
+  double start_anchor = 0.0, t0 = 0.0;
+  long n = 0;  // steps of the pull
+  // The pull's state for a checkpoint (the simulation between two steps).
+  const auto now = [&](bool pulling) {
+    StateWriter state;
+    sim.save_state(state);
+    return PullState{friction, load, pulling,    anchor,       start_anchor,
+                     t0,       n,    run.record, state.bytes()};
+  };
+  if (!resumed || !resumed->pulling) {
+    while (sim.time() < 0.03) {
+      for (long i = 0; i < chunk; ++i) step();
+      if (sim.time() > 0.002 && std::abs(sim.walls()[k].velocity.z) < 1e-4) break;
+      if (checkpoints) checkpoints->poll([&] { return now(false); });
+    }
+    start_anchor = anchor, t0 = sim.time();
+  } else {
+    start_anchor = resumed->start_anchor, t0 = resumed->start_time;
+    n = resumed->pull_steps, run.record = std::move(resumed->record);
+  }
+  // Pull: the far end of the rope moves at V; the rope force is the spring's extension.
   const double duration = s.slide_distance / s.speed;
   const long record_every = std::max(1L, static_cast<long>(duration / dt / 400));
   anchor_speed = s.speed;
-  for (long n = 0; sim.time() - t0 < duration; ++n) {
+  while (sim.time() - t0 < duration) {
     anchor = start_anchor + s.speed * (sim.time() - t0);
     step();
     if (n % record_every == 0) {
@@ -168,18 +212,20 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
           s.spring_stiffness * (anchor - w.point.x) + rope_damping * (anchor_speed - w.velocity.x);
       run.record.push_back({sim.time() - t0, anchor - start_anchor, rope_force, w.point.z});
     }
+    ++n;
+    if (checkpoints && n % 256 == 0) checkpoints->poll([&] { return now(true); });
   }
   // Steady sliding: the second half of the pull.
   double sum = 0.0, sum2 = 0.0;
-  size_t n = 0;
+  size_t rows = 0;
   for (const auto& r : run.record)
     if (r[1] >= 0.5 * s.slide_distance) {
       sum += r[2];
       sum2 += r[2] * r[2];
-      ++n;
+      ++rows;
     }
-  run.mean_force = sum / n;
-  run.force_sd = std::sqrt(std::max(0.0, sum2 / n - run.mean_force * run.mean_force));
+  run.mean_force = sum / rows;
+  run.force_sd = std::sqrt(std::max(0.0, sum2 / rows - run.mean_force * run.mean_force));
   return run;
 }
 
@@ -191,17 +237,31 @@ double sliding_time_step(const SlidingFrictionSettings& s, const PairTable& tabl
 
 SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
                                                 const PairTable& table, double density,
-                                                Progress* progress) {
+                                                Progress* progress,
+                                                SlidingFrictionCheckpoints* checkpoints) {
   const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
   SlidingFrictionResult out;
   out.friction_input = table(bead, slider).friction;
-  const Bed bed = make_bed(s, table, bead, density);
+  // The bed: from the checkpoint of an interrupted run, else deposited (and recorded there).
+  const SavedBed* saved = checkpoints ? checkpoints->bed(out.friction_input) : nullptr;
+  Bed bed;
+  if (saved) {
+    bed.particles = saved->particles, bed.top = saved->top;
+    if (!s.fixed_bed) bed.walls = bed_walls(s, bead);  // a fixed patch needs no box
+  } else {
+    bed = make_bed(s, table, bead, density);
+    if (checkpoints) checkpoints->record_bed(out.friction_input, bed.particles, bed.top);
+  }
   out.bead_count = static_cast<int>(bed.particles.size());
   out.bed_height = bed.top;
   out.time_step = settings_for(s, table, bead, density).time_step;
   std::vector<calibrate::LoadPoint> points;
   for (size_t i = 0; i < s.loads.size(); ++i) {
-    out.runs.push_back(pull_slider(bed, s, table, bead, slider, density, s.loads[i]));
+    const LoadRun* done =
+        checkpoints ? checkpoints->finished_pull(out.friction_input, s.loads[i]) : nullptr;
+    out.runs.push_back(
+        done ? *done : pull_slider(bed, s, table, bead, slider, density, s.loads[i], checkpoints));
+    if (checkpoints && !done) checkpoints->record_pull(out.friction_input, out.runs.back());
     points.push_back({i + 1, s.speed * 6e4, s.loads[i], out.runs.back().mean_force});
     if (progress)
       progress->update(

@@ -47,6 +47,7 @@ struct SlidingFrictionSettings {
   double dt_fraction = 0.1;
   double gravity = 9.81;  // m/s^2
   unsigned long seed = 1;
+  double checkpoint_interval = 60.0;  // s of wall time between checkpoints
 };
 
 struct LoadRun {
@@ -73,9 +74,13 @@ class Progress;
 // The time step of the test and the steps one pull takes (slide_distance / speed / dt).
 double sliding_time_step(const SlidingFrictionSettings& s, const PairTable& table, double density);
 
+// With `checkpoints`, what an interrupted run did is taken from them and what this run does is
+// recorded there (lab/sliding_friction_checkpoint.hpp).
+class SlidingFrictionCheckpoints;
 SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s,
                                                 const PairTable& table, double bead_density,
-                                                Progress* progress = nullptr);
+                                                Progress* progress = nullptr,
+                                                SlidingFrictionCheckpoints* checkpoints = nullptr);
 
 // `grainlab run` entry for `[test] type = "sliding_friction"` (with optional inverse mode).
 void run_sliding_friction(const std::string& config_path, const toml::table& root,

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "contact/time_step.hpp"
 #include "grainlab/version.hpp"
 #include "io/config_error.hpp"
+#include "io/interrupt.hpp"
 #include "io/output_files.hpp"
 #include "io/progress.hpp"
 #include "io/scene_builder.hpp"
@@ -16,6 +18,7 @@
 #include "lab/lab_config.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/sliding_friction.hpp"
+#include "lab/sliding_friction_checkpoint.hpp"
 
 namespace grainlab {
 namespace {
@@ -132,12 +135,32 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
     t.fail("speed", fmt::format("a pull of slide_distance / speed would take {:.3g} steps, more "
                                 "than grainlab runs ({:.0e})",
                                 pull_steps, max_steps_per_run));
+  const double checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time,
+                                                 SlidingFrictionSettings{}.checkpoint_interval);
+  if (!(checkpoint_interval > 0))
+    t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
   t.finish();
 
-  prepare_output_dir(options.out_dir, options.overwrite);
+  // Checkpoints (DIR/checkpoint.bin) every checkpoint_interval and on Ctrl-C; a resumed run
+  // takes what was done from them.
+  const std::string checkpoint_path = options.out_dir + "/checkpoint.bin";
+  const bool resuming = !options.resumed_config.empty();
+  if (resuming)
+    continue_in_output_dir(options.out_dir);
+  else
+    prepare_output_dir(options.out_dir, options.overwrite);
+  SlidingFrictionCheckpoints checkpoints =
+      resuming
+          ? SlidingFrictionCheckpoints::resume(checkpoint_path, checkpoint_interval, bead, table)
+          : SlidingFrictionCheckpoints(checkpoint_path, {"sliding_friction", path, read_file(path)},
+                                       checkpoint_interval);
+  if (resuming && !options.quiet)
+    fmt::print(stderr, "sliding friction: resuming from {}: {}\n", checkpoint_path,
+               checkpoints.describe());
+  install_interrupt_handler();
   const double density = *c.materials[bead].density;
   Progress progress("sliding friction", options.quiet, 2.0);
-  SlidingFrictionResult r = simulate_sliding_friction(s, table, density, &progress);
+  SlidingFrictionResult r = simulate_sliding_friction(s, table, density, &progress, &checkpoints);
 
   nlohmann::json j = summary_header(path);
   j.update(result_json(r));
@@ -180,7 +203,7 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
       p.arf = q.arf;
       PairTable trial = table;
       trial.set(bead, slider, p);
-      return record(mu, simulate_sliding_friction(s, trial, density));
+      return record(mu, simulate_sliding_friction(s, trial, density, nullptr, &checkpoints));
     };
     // The lower end is not run: at mu_s = 0 the face carries no tangential force, and the little
     // the slider's edge adds is taken as zero.
@@ -234,8 +257,12 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
     j["warning"] =
         fmt::format("unreliable: the F-P fit has R^2 = {:.3g} (below {}) or a slope <= 0 ({:.3g})",
                     r.r_squared, min_r_squared, r.friction_apparent);
+  j["wall_time_s"] = checkpoints.wall_time();
   write_file_atomically(options.out_dir + "/force_time.csv", csv);
   write_file_atomically(options.out_dir + "/summary.json", j.dump(2) + "\n");
+  // A finished run has nothing to resume.
+  std::error_code ec;
+  std::filesystem::remove(checkpoint_path, ec);
   if (unreliable)
     throw UnreliableResult(fmt::format(
         "{}: the apparent friction {:.4g} is not a measurement: its F-P fit has R^2 = {:.3g} "

@@ -41,6 +41,7 @@
 #include "lab/element_test.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/scale_study.hpp"
+#include "lab/sliding_friction_checkpoint.hpp"
 #include "lab/specimen.hpp"
 #include "lab/triaxial.hpp"
 
@@ -216,7 +217,8 @@ toml::table parse_config(const std::string& text, const std::string& path) {
 
 // A small prepared specimen and a checkpoint of it, as seeds of the two binary/record targets.
 void make_state_seeds(const fs::path& source, const fs::path& work, std::string& specimen_csv,
-                      std::string& checkpoint_payload, PairTable& table) {
+                      std::string& checkpoint_payload, std::string& sliding_payload,
+                      PairTable& table) {
   const std::string config_path = (source / "examples/triaxial/small.toml").string();
   const std::string config_text = read_file(config_path);
   const toml::table root = parse_config(config_text, config_path);
@@ -245,6 +247,21 @@ void make_state_seeds(const fs::path& source, const fs::path& work, std::string&
   save_checkpoint(run, (work / "seed-checkpoint.bin").string());
   const std::string sealed = read_file(work / "seed-checkpoint.bin");
   checkpoint_payload = sealed.substr(0, sealed.size() - sizeof(uint64_t));
+  // A sliding-friction checkpoint: a bed, a finished pull and a pull under way (interval 0: the
+  // first poll saves).
+  const std::string sliding_path = (work / "seed-sliding.bin").string();
+  SlidingFrictionCheckpoints sliding(sliding_path, {"sliding_friction", config_path, config_text},
+                                     0.0);
+  sliding.record_bed(0.21, s.particles, 0.01);
+  sliding.record_pull(0.21, LoadRun{0.1, 0.02, 0.001, {{0.0, 0.0, 0.02, 0.01}}});
+  StateWriter state;
+  run.sim.save_state(state);
+  sliding.poll([&] {
+    return PullState{0.21,         0.2, true, 0.003, 0.001, 0.05, 10, {{0.0, 0.0, 0.02, 0.01}},
+                     state.bytes()};
+  });
+  const std::string sliding_sealed = read_file(sliding_path);
+  sliding_payload = sliding_sealed.substr(0, sliding_sealed.size() - sizeof(uint64_t));
 }
 
 }  // namespace
@@ -277,9 +294,9 @@ int main(int argc, char** argv) {
   fs::create_directories(work);
   for (int sig : {SIGSEGV, SIGABRT, SIGFPE, SIGBUS, SIGILL, SIGALRM}) signal(sig, save_and_exit);
 
-  std::string specimen_csv, checkpoint_payload;
+  std::string specimen_csv, checkpoint_payload, sliding_payload;
   PairTable table{std::vector<Material>{}};
-  make_state_seeds(source, work, specimen_csv, checkpoint_payload, table);
+  make_state_seeds(source, work, specimen_csv, checkpoint_payload, sliding_payload, table);
   const std::vector<std::string> lab_configs = [&] {
     std::vector<std::string> out;
     for (const char* d : {"examples/triaxial", "examples/plane_strain", "examples/oedometer"})
@@ -347,6 +364,14 @@ int main(int argc, char** argv) {
                        sealed.append(reinterpret_cast<const char*>(&sum), sizeof sum);
                        write_file(scratch.string() + ".bin", sealed);
                        load_checkpoint(scratch.string() + ".bin", table);
+                     }});
+  targets.push_back({"sliding_checkpoint", {sliding_payload}, false, [&](const std::string& in) {
+                       std::string sealed = in;
+                       const uint64_t sum = checkpoint_checksum(in);
+                       sealed.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+                       write_file(scratch.string() + ".bin", sealed);
+                       SlidingFrictionCheckpoints::resume(scratch.string() + ".bin", 60.0,
+                                                          table.find("glass"), table);
                      }});
 
   long findings = 0;

@@ -120,6 +120,13 @@ def params_of_element_tests():
         assert dt_params <= dt_run <= 1.01 * dt_params
         r = run("params", os.path.join(SRC, "examples/paper/flat_throw_glass.toml"))
         assert r.returncode == 2 and "flat_throw" in r.stderr, r.stderr
+        # A scale study shows its plane strain test's constants at the base diameter: the same
+        # step as the plane strain example of the same beads and walls.
+        r = run("params", os.path.join(SRC, "examples/scale_study/small.toml"), "--json")
+        assert r.returncode == 0, r.stderr
+        q = run("params", os.path.join(SRC, "examples/plane_strain/small.toml"), "--json")
+        assert q.returncode == 0, q.stderr
+        assert json.loads(r.stdout)["time_step_s"] == json.loads(q.stdout)["time_step_s"]
 
 
 def triaxial_unknown_key():
@@ -393,6 +400,56 @@ def sliding_inverse_on_fixed_beads():
         assert abs(inverse["friction_input_found"] - 0.2116) < 0.0002, inverse
 
 
+def sliding_checkpoint_survives_kill():
+    """The sliding-friction test in inverse mode (fixed beads, two loads, 1.5 mm pulls: three
+    trials of two pulls, 6 s) with a checkpoint every 0.3 s, killed (SIGKILL) twice, each time
+    after a new checkpoint appeared, and resumed: force_time.csv and summary.json are identical to
+    an uninterrupted run's, the resume says nothing about a fresh start, and a finished run cannot
+    be resumed again."""
+    import re
+    import time
+    text = open(os.path.join(SRC, "examples/paper/sliding_friction_rubber_membrane.toml")).read()
+    for old, new in (('slide_distance = "8 mm"', 'slide_distance = "1.5 mm"\nfixed_bed = true\n'
+                      'target_friction = 0.2116\ncheckpoint_interval = "0.3 s"'),
+                     ('loads = ["0.1 N", "0.2 N", "0.3 N", "0.4 N"]', 'loads = ["0.1 N", "0.3 N"]')):
+        assert old in text, old
+        text = text.replace(old, new)
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s.toml")
+        open(path, "w").write(text)
+        a, b = os.path.join(d, "a"), os.path.join(d, "b")
+        assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
+        checkpoint = os.path.join(b, "checkpoint.bin")
+        command = [EXE, "run", path, "--out", b, "--quiet", "--threads", "1"]
+        for kill in range(2):
+            before = os.stat(checkpoint).st_mtime_ns if os.path.exists(checkpoint) else None
+            p = subprocess.Popen(command)
+            for _ in range(1000):
+                if os.path.exists(checkpoint) and os.stat(checkpoint).st_mtime_ns != before:
+                    break
+                time.sleep(0.01)
+            time.sleep(1.0)
+            p.kill()  # no chance to write anything more
+            p.wait()
+            assert p.returncode != 0, "the run must still be going when it is killed"
+            assert os.path.exists(checkpoint), "a periodic checkpoint.bin must exist"
+            assert not os.path.exists(os.path.join(b, "summary.json")), "killed before the end"
+            command = [EXE, "run", "--resume", b, "--threads", "2"]  # any thread count
+        r = subprocess.run(command, capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stderr
+        # It continued a pull under way, not the test from its start.
+        assert re.search(r"resuming from .*checkpoint.bin: \d+ pull\(s\) done, the pull at P = .* steps into",
+                         r.stderr), r.stderr
+        assert open(os.path.join(a, "force_time.csv")).read() == open(os.path.join(b, "force_time.csv")).read()
+        sa, sb = json.load(open(os.path.join(a, "summary.json"))), json.load(open(os.path.join(b, "summary.json")))
+        differ = [k for k in sa if sa[k] != sb[k] and k != "wall_time_s"]
+        assert not differ, differ
+        assert len(sa["inverse"]["iterations"]) >= 2, sa["inverse"]
+        assert not os.path.exists(checkpoint)
+        r = run("run", "--resume", b, "--quiet")
+        assert r.returncode == 2, (r.returncode, r.stderr)
+
+
 def resume_without_checkpoint():
     with tempfile.TemporaryDirectory() as d:
         r = run("run", "--resume", d)
@@ -444,6 +501,9 @@ def oedometer_bad_input():
                             "test.unload_stress")
     expect_bad_element_test(text, "count = 500", "count = 500\nmax_axial_strian = 0.1",
                             "test.max_axial_strian", "unknown key")
+    expect_bad_element_test(text, "[[material]]",
+                            '[test.laboratory]\npeak_axial_stress = "300 kPa"\n\n[[material]]',
+                            "test.laboratory", "compares no result")
 
 
 def specimen_file_corrupt():
