@@ -62,6 +62,7 @@ FlatThrowResult simulate_flat_throw(const FlatThrowSettings& s, const PairTable&
   settings.dt_fraction = step.dt_fraction;
   settings.gravity = {0.0, 0.0, -g};
   settings.skin = verlet_skin(2.0 * r);
+  settings.step_key = SimulationSettings::StepKey::lab_test;  // advice names test.dt_fraction
   Simulation sim(std::move(p), walls, table, settings);
   out.time_step = settings.time_step;
   out.dt_fraction = settings.dt_fraction;

@@ -45,6 +45,7 @@ SimulationSettings settings_for(const SlidingFrictionSettings& s, const PairTabl
   out.dt_fraction = step.dt_fraction;  // below s.dt_fraction if stability lowered it
   out.gravity = {0.0, 0.0, -s.gravity};
   out.skin = verlet_skin(s.diameter);
+  out.step_key = SimulationSettings::StepKey::lab_test;  // advice names test.dt_fraction
   return out;
 }
 
