@@ -1,8 +1,7 @@
-// The forces: particle-particle entries of the half Verlet list (pair_row) and particle-wall
-// candidates (wall_row). Each row writes the force and torques of its contacts into the contact
-// arrays (no shared accumulators); gather_particle sums them per particle. The step runs them,
-// the gather and the closing half kick in one parallel region (step_forces_and_kick). The
-// optional pieces of the contact law are chosen once per call through the template switches.
+// The two force loops: particle-particle entries of the half Verlet list, and particle-wall
+// candidates. Each writes the force and torques of its contacts into the contact arrays (no
+// shared accumulators); Simulation::gather sums them per particle. The optional pieces of the
+// contact law are chosen once per call through the template switches.
 #include <algorithm>
 #include <cmath>
 
@@ -26,82 +25,9 @@ inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
   return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
 }
 
-// The contacts of particle i with its partners j > i (row i of the half list): their forces and
-// torques into the contact arrays. Returns the largest overlap as a fraction of the smaller
-// radius (0 without a touching contact). dt: the time step (for the end-of-step velocity
-// estimate); drift: the time the positions last drifted over, dt after a drift and 0 when forces
-// are evaluated on a fresh state (at construction), when no spring may advance and no contact
-// can have begun "during" a step.
-template <bool R, bool T, bool RF>
-inline double pair_row(const ParticleStore& p, const PairParams* params, int materials,
-                       PairContacts& c, double dt, double drift, long i) {
-  double max_fraction = 0.0;
-  const Vec3 xi = p.position[i];
-  const double ri = p.radius[i];
-  const PairParams* row_params = params + p.material[i] * materials;
-  for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-    const uint32_t j = c.partner[e];
-    const double rj = p.radius[j];
-    const Vec3 d = p.position[j] - xi;
-    const double reach = ri + rj;
-    const double dist2 = norm2(d);
-    if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
-      c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
-      c.normal_force[e] = 0.0;
-      c.sliding_spring[e] = Vec3{};
-      if constexpr (R) c.rolling_angle[e] = Vec3{};
-      if constexpr (T) c.twisting_angle[e] = 0.0;
-      if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
-      continue;
-    }
-    const double dist = std::sqrt(dist2);
-    ContactKinematics k;
-    k.normal = (1.0 / dist) * d;
-    k.overlap = reach - dist;
-    if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
-    // contact point halfway through the overlap
-    const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-    set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
-                          p.angular_velocity[j], lever_j, 0.5);
-    set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
-                          velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
-    double inertia = 0.0, contact_radius = 0.0;
-    if constexpr (R || T) {
-      inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
-      contact_radius = contact_circle_radius(ri, rj, dist);
-    }
-    ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
-                        T ? &c.twisting_angle[e] : nullptr,
-                        RF ? &c.rolling_force_displacement[e] : nullptr};
-    // A contact whose overlap is no more than twice the step's growth may have begun in this
-    // step: undo the drift (exactly: positions moved by drift v) to find the overlap before it.
-    // The growth is the normal increment plus the curvature term |s_t|^2 / (2 D) of the
-    // relative drift s (sideways motion also closes the distance).
-    double touch_fraction = 0.0;
-    if (drift > 0.0) {
-      const Vec3 s = drift * (p.velocity[j] - p.velocity[i]);
-      const double s_n = dot(s, k.normal);
-      const double curvature = (norm2(s) - s_n * s_n) / (2.0 * dist);
-      if (k.overlap <= 2.0 * (k.overlap_increment + curvature)) {
-        touch_fraction = first_touch_fraction(reach - norm(d - s), k.overlap);
-        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
-      }
-    }
-    const PairParams& pair = row_params[p.material[j]];
-    const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
-    ContactResponse r =
-        contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
-    if (touch_fraction > 0.0)
-      charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
-    c.force_on_first[e] = r.force_on_a;
-    c.torque_on_first[e] = r.torque_on_a;
-    c.torque_on_second[e] = r.torque_on_b;
-    c.normal_force[e] = r.normal_force;
-    max_fraction = std::max(max_fraction, k.overlap / std::min(ri, rj));
-  }
-  return max_fraction;
-}
-
+// dt: the time step (for the end-of-step velocity estimate); drift: the time the positions last
+// drifted over, dt after a drift and 0 when forces are evaluated on a fresh state (at
+// construction), when no spring may advance and no contact can have begun "during" a step.
 template <bool R, bool T, bool RF>
 double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt,
                    double drift) {
@@ -110,85 +36,70 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
   const PairParams* params = &table(0, 0);
   double max_fraction = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i)
-    max_fraction =
-        std::max(max_fraction, pair_row<R, T, RF>(p, params, materials, c, dt, drift, i));
-  return max_fraction;
-}
-
-// The wall contacts of particle i (its row of wall candidates): their forces and torques into
-// the contact arrays. Returns the largest overlap as a fraction of the radius.
-template <bool R, bool T, bool RF>
-inline double wall_row(const ParticleStore& p, const std::vector<Wall>& walls,
-                       const PairTable& table, WallContacts& c, double dt, double drift, long i) {
-  double max_fraction = 0.0;
-  const double r = p.radius[i];
-  for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-    const Wall& w = walls[c.wall[e]];
-    const WallGap g = wall_gap(w, p.position[i]);
-    const double overlap = r - g.gap;
-    // A wall with mass (a slider) is a second body: m* = m_p M / (m_p + M); a fixed wall has
-    // M = infinity. A fixed particle touches only walls that have mass.
-    const double wall_inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;
-    const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass;
-    if (overlap <= 0.0 || inverse_mass_sum == 0.0) {
-      c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
-      c.normal_stiffness[e] = c.normal_force[e] = 0.0;
-      c.sliding_spring[e] = Vec3{};
-      if constexpr (R) c.rolling_angle[e] = Vec3{};
-      if constexpr (T) c.twisting_angle[e] = 0.0;
-      if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
-      continue;
-    }
-    ContactKinematics k;
-    k.normal = g.normal;
-    k.overlap = overlap;
-    k.effective_radius = r;
-    k.effective_mass = 1.0 / inverse_mass_sum;
-    const double lever = g.gap;  // contact point on the wall surface
-    set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever, w.velocity, Vec3{},
-                          0.0, 1.0);
-    // A wall with mass is integrated like a particle: its velocity too is a half-step one here.
-    const Vec3 wall_velocity_at_step_end =
-        w.mass > 0.0 ? w.velocity + (0.5 * dt / w.mass) * (w.force + w.external_force) : w.velocity;
-    set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
-                          wall_velocity_at_step_end, Vec3{}, 0.0);
-    double inertia = 0.0, contact_radius = 0.0;
-    if constexpr (R || T) {
-      inertia = p.inverse_inertia[i] > 0.0 ? 1.0 / p.inverse_inertia[i] : 0.0;
-      contact_radius = contact_circle_radius_on_wall(r, overlap);
-    }
-    ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
-                        T ? &c.twisting_angle[e] : nullptr,
-                        RF ? &c.rolling_force_displacement[e] : nullptr};
-    const PairParams& pair = table(p.material[i], w.material);
-    // First touch in this step (see the pair loop): the gap before the drift, with the wall
-    // and the particle moved back (exact for any wall shape). The gate allows for rectangle
-    // edges and cylinders, where the gap is not linear in the positions: sideways drift s_t
-    // changes it by at most |s_t|^2 / (2 gap).
-    double touch_fraction = 0.0;
-    if (drift > 0.0) {
-      const Vec3 s = drift * (p.velocity[i] - w.velocity);
-      const double s_n = dot(s, g.normal);
-      if (overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
-        Wall before = w;
-        before.point -= drift * w.velocity;
-        const double overlap_before =
-            r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
-        touch_fraction = first_touch_fraction(overlap_before, overlap);
-        if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+  for (long i = 0; i < n; ++i) {
+    const Vec3 xi = p.position[i];
+    const double ri = p.radius[i];
+    const PairParams* row_params = params + p.material[i] * materials;
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const uint32_t j = c.partner[e];
+      const double rj = p.radius[j];
+      const Vec3 d = p.position[j] - xi;
+      const double reach = ri + rj;
+      const double dist2 = norm2(d);
+      if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
+        c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
+        c.normal_force[e] = 0.0;
+        c.sliding_spring[e] = Vec3{};
+        if constexpr (R) c.rolling_angle[e] = Vec3{};
+        if constexpr (T) c.twisting_angle[e] = 0.0;
+        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+        continue;
       }
+      const double dist = std::sqrt(dist2);
+      ContactKinematics k;
+      k.normal = (1.0 / dist) * d;
+      k.overlap = reach - dist;
+      if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
+      // contact point halfway through the overlap
+      const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
+      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
+                            p.angular_velocity[j], lever_j, 0.5);
+      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
+                            velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
+      double inertia = 0.0, contact_radius = 0.0;
+      if constexpr (R || T) {
+        inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
+        contact_radius = contact_circle_radius(ri, rj, dist);
+      }
+      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
+                          T ? &c.twisting_angle[e] : nullptr,
+                          RF ? &c.rolling_force_displacement[e] : nullptr};
+      // A contact whose overlap is no more than twice the step's growth may have begun in this
+      // step: undo the drift (exactly: positions moved by drift v) to find the overlap before it.
+      // The growth is the normal increment plus the curvature term |s_t|^2 / (2 D) of the
+      // relative drift s (sideways motion also closes the distance).
+      double touch_fraction = 0.0;
+      if (drift > 0.0) {
+        const Vec3 s = drift * (p.velocity[j] - p.velocity[i]);
+        const double s_n = dot(s, k.normal);
+        const double curvature = (norm2(s) - s_n * s_n) / (2.0 * dist);
+        if (k.overlap <= 2.0 * (k.overlap_increment + curvature)) {
+          touch_fraction = first_touch_fraction(reach - norm(d - s), k.overlap);
+          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+        }
+      }
+      const PairParams& pair = row_params[p.material[j]];
+      const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
+      ContactResponse r =
+          contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
+      if (touch_fraction > 0.0)
+        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
+      c.force_on_first[e] = r.force_on_a;
+      c.torque_on_first[e] = r.torque_on_a;
+      c.torque_on_second[e] = r.torque_on_b;
+      c.normal_force[e] = r.normal_force;
+      max_fraction = std::max(max_fraction, k.overlap / std::min(ri, rj));
     }
-    const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
-    ContactResponse resp =
-        contact_response<R, T, RF>(pair, normal, k, lever, 0.0, inertia, contact_radius, h);
-    if (touch_fraction > 0.0)
-      charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever, 0.0, inertia, resp);
-    c.force_on_particle[e] = resp.force_on_a;
-    c.torque_on_particle[e] = resp.torque_on_a;
-    c.normal_stiffness[e] = resp.normal_stiffness;
-    c.normal_force[e] = resp.normal_force;
-    max_fraction = std::max(max_fraction, overlap / r);
   }
   return max_fraction;
 }
@@ -199,80 +110,83 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
   const long n = static_cast<long>(p.size());
   double max_fraction = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i)
-    max_fraction = std::max(max_fraction, wall_row<R, T, RF>(p, walls, table, c, dt, drift, i));
+  for (long i = 0; i < n; ++i) {
+    const double r = p.radius[i];
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const Wall& w = walls[c.wall[e]];
+      const WallGap g = wall_gap(w, p.position[i]);
+      const double overlap = r - g.gap;
+      // A wall with mass (a slider) is a second body: m* = m_p M / (m_p + M); a fixed wall has
+      // M = infinity. A fixed particle touches only walls that have mass.
+      const double wall_inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;
+      const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass;
+      if (overlap <= 0.0 || inverse_mass_sum == 0.0) {
+        c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
+        c.normal_stiffness[e] = c.normal_force[e] = 0.0;
+        c.sliding_spring[e] = Vec3{};
+        if constexpr (R) c.rolling_angle[e] = Vec3{};
+        if constexpr (T) c.twisting_angle[e] = 0.0;
+        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+        continue;
+      }
+      ContactKinematics k;
+      k.normal = g.normal;
+      k.overlap = overlap;
+      k.effective_radius = r;
+      k.effective_mass = 1.0 / inverse_mass_sum;
+      const double lever = g.gap;  // contact point on the wall surface
+      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever, w.velocity,
+                            Vec3{}, 0.0, 1.0);
+      // A wall with mass is integrated like a particle: its velocity too is a half-step one here.
+      const Vec3 wall_velocity_at_step_end =
+          w.mass > 0.0 ? w.velocity + (0.5 * dt / w.mass) * (w.force + w.external_force)
+                       : w.velocity;
+      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
+                            wall_velocity_at_step_end, Vec3{}, 0.0);
+      double inertia = 0.0, contact_radius = 0.0;
+      if constexpr (R || T) {
+        inertia = p.inverse_inertia[i] > 0.0 ? 1.0 / p.inverse_inertia[i] : 0.0;
+        contact_radius = contact_circle_radius_on_wall(r, overlap);
+      }
+      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
+                          T ? &c.twisting_angle[e] : nullptr,
+                          RF ? &c.rolling_force_displacement[e] : nullptr};
+      const PairParams& pair = table(p.material[i], w.material);
+      // First touch in this step (see the pair loop): the gap before the drift, with the wall
+      // and the particle moved back (exact for any wall shape). The gate allows for rectangle
+      // edges and cylinders, where the gap is not linear in the positions: sideways drift s_t
+      // changes it by at most |s_t|^2 / (2 gap).
+      double touch_fraction = 0.0;
+      if (drift > 0.0) {
+        const Vec3 s = drift * (p.velocity[i] - w.velocity);
+        const double s_n = dot(s, g.normal);
+        if (overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
+          Wall before = w;
+          before.point -= drift * w.velocity;
+          const double overlap_before =
+              r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
+          touch_fraction = first_touch_fraction(overlap_before, overlap);
+          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+        }
+      }
+      const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
+      ContactResponse resp =
+          contact_response<R, T, RF>(pair, normal, k, lever, 0.0, inertia, contact_radius, h);
+      if (touch_fraction > 0.0)
+        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever, 0.0, inertia, resp);
+      c.force_on_particle[e] = resp.force_on_a;
+      c.torque_on_particle[e] = resp.torque_on_a;
+      c.normal_stiffness[e] = resp.normal_stiffness;
+      c.normal_force[e] = resp.normal_force;
+      max_fraction = std::max(max_fraction, overlap / r);
+    }
+  }
   return max_fraction;
-}
-
-// Sums, for particle i and in a fixed order, gravity, the entries where it is first, the entries
-// where it is second (opposite force), its wall contacts and its external force (only while
-// some particle has one, so that a run without them adds nothing, not even a zero).
-inline void gather_particle(ParticleStore& p, const PairContacts& c, const WallContacts& wc,
-                            const Vec3& g, bool external, long i) {
-  Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
-  Vec3 t;
-  for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-    f += c.force_on_first[e];
-    t += c.torque_on_first[e];
-  }
-  for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
-    const uint32_t e = c.col_pair[k];
-    f -= c.force_on_first[e];
-    t += c.torque_on_second[e];
-  }
-  for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
-    f += wc.force_on_particle[e];
-    t += wc.torque_on_particle[e];
-  }
-  if (external) f += p.external_force[i];
-  p.force[i] = f;
-  p.torque[i] = t;
-}
-
-// The step after the drift, in one parallel region with one barrier: every thread computes the
-// contacts of its particles' rows (pairs, then walls), and once all contacts are known
-// (barrier), sums each of its particles' forces and closes the step with the second half kick,
-// v(t + dt) = v(t + dt/2) + dt/2 F(t + dt)/m. The same arithmetic in the same order as the
-// separate loops (pair_forces, wall_forces, gather, then the kick), so the results do not
-// change, with one fork/join per step instead of four. Returns the largest overlap fraction and
-// the largest squared speed (infinite for a NaN).
-struct StepResult {
-  double max_overlap_fraction = 0.0, max_speed2 = 0.0;
-};
-template <bool R, bool T, bool RF>
-StepResult step_forces_and_kick(ParticleStore& p, const std::vector<Wall>& walls,
-                                const PairTable& table, PairContacts& c, WallContacts& wc,
-                                const Vec3& gravity, bool external, double dt) {
-  const long n = static_cast<long>(p.size());
-  const int materials = table.material_count();
-  const PairParams* params = &table(0, 0);
-  const double half = 0.5 * dt;
-  double pair_fraction = 0.0, wall_fraction = 0.0, max_speed2 = 0.0;
-#pragma omp parallel if (n > parallel_threshold)
-  {
-#pragma omp for schedule(static) reduction(max : pair_fraction, wall_fraction)
-    for (long i = 0; i < n; ++i) {
-      pair_fraction =
-          std::max(pair_fraction, pair_row<R, T, RF>(p, params, materials, c, dt, dt, i));
-      wall_fraction = std::max(wall_fraction, wall_row<R, T, RF>(p, walls, table, wc, dt, dt, i));
-    }
-    // (implicit barrier: every contact of every row is known)
-#pragma omp for schedule(static) reduction(max : max_speed2)
-    for (long i = 0; i < n; ++i) {
-      gather_particle(p, c, wc, gravity, external, i);
-      p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-      p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-      const double v2 = norm2(p.velocity[i]);
-      // NaN compares false: a NaN speed is recorded as infinite.
-      max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
-    }
-  }
-  return {std::max(pair_fraction, wall_fraction), max_speed2};
 }
 
 // Calls F<R, T, RF>() for the runtime combination of optional pieces.
 template <template <bool, bool, bool> class F, class... Args>
-auto dispatch(ContactPieces pieces, Args&&... args) {
+double dispatch(ContactPieces pieces, Args&&... args) {
   const int code =
       (pieces.rolling ? 4 : 0) | (pieces.twisting ? 2 : 0) | (pieces.rolling_force ? 1 : 0);
   switch (code) {
@@ -310,54 +224,7 @@ struct WallKernel {
   }
 };
 
-template <bool R, bool T, bool RF>
-struct StepKernel {
-  static StepResult run(ParticleStore& p, const std::vector<Wall>& w, const PairTable& t,
-                        PairContacts& c, WallContacts& wc, const Vec3& g, bool external,
-                        double dt) {
-    return step_forces_and_kick<R, T, RF>(p, w, t, c, wc, g, external, dt);
-  }
-};
-
 }  // namespace
-
-void Simulation::forces_and_closing_kick() {
-  const StepResult r =
-      dispatch<StepKernel>(pieces_, particles_, walls_, table_, pairs_, wall_contacts_,
-                           settings_.gravity, external_forces_, settings_.time_step);
-  max_overlap_fraction_ = r.max_overlap_fraction;
-  max_speed2_ = r.max_speed2;
-  wall_totals();
-  const double half = 0.5 * settings_.time_step;
-  for (Wall& w : walls_)
-    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
-}
-
-void Simulation::gather() {
-  ParticleStore& p = particles_;
-  const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i)
-    gather_particle(p, pairs_, wall_contacts_, settings_.gravity, external_forces_, i);
-  wall_totals();
-}
-
-// Wall totals, serial in entry order (few entries; deterministic).
-void Simulation::wall_totals() {
-  const WallContacts& wc = wall_contacts_;
-  for (Wall& w : walls_) {
-    w.force = Vec3{};
-    w.contact_stiffness = 0.0;
-    w.contact_count = 0;
-  }
-  for (size_t e = 0; e < wc.size(); ++e) {
-    if (wc.normal_stiffness[e] == 0.0) continue;
-    Wall& w = walls_[wc.wall[e]];
-    w.force -= wc.force_on_particle[e];
-    w.contact_stiffness += wc.normal_stiffness[e];
-    ++w.contact_count;
-  }
-}
 
 void Simulation::refresh_contact_constants() {
   const ParticleStore& p = particles_;

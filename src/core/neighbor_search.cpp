@@ -6,16 +6,12 @@
 
 namespace grainlab {
 
-bool NeighborSearch::walls_need_rebuild(const std::vector<Wall>& walls) const {
-  if (wall_pose_at_build_.size() != walls.size()) return true;
+bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
+  if (position_at_build_.size() != p.size() || wall_pose_at_build_.size() != walls.size())
+    return true;
+  const double limit2 = 0.25 * skin_ * skin_;
   for (size_t w = 0; w < walls.size(); ++w)
     if (surface_displacement(wall_pose_at_build_[w], walls[w]) > 0.5 * skin_) return true;
-  return false;
-}
-
-bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
-  if (position_at_build_.size() != p.size() || walls_need_rebuild(walls)) return true;
-  const double limit2 = drift_limit2();
   const long n = static_cast<long>(p.size());
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)

@@ -31,14 +31,7 @@ class NeighborSearch {
  public:
   explicit NeighborSearch(double skin) : skin_(skin) {}
 
-  // A rebuild is due when a particle has moved more than half the skin since the last one, or a
-  // wall's surface has.
   bool needs_rebuild(const ParticleStore& particles, const std::vector<Wall>& walls) const;
-  // The parts of that rule, for a step loop that checks the particles in its own pass: the
-  // positions at the last rebuild, the squared half skin, and the walls' part.
-  const std::vector<Vec3>& position_at_build() const { return position_at_build_; }
-  double drift_limit2() const { return 0.25 * skin_ * skin_; }
-  bool walls_need_rebuild(const std::vector<Wall>& walls) const;
 
   void rebuild(ParticleStore& particles, const std::vector<Wall>& walls, PairContacts& pairs,
                WallContacts& wall_contacts, ContactPieces pieces);

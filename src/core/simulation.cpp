@@ -28,11 +28,13 @@ void Simulation::rebuild_neighbors() {
 
 void Simulation::step() {
   for (StepListener* l : listeners_) l->before_step(*this);
-  if (kick_and_drift()) {
+  kick_and_drift();
+  if (neighbors_.needs_rebuild(particles_, walls_)) {
     rebuild_neighbors();
     for (StepListener* l : listeners_) l->after_rebuild(*this);
   }
-  forces_and_closing_kick();
+  compute_forces(settings_.time_step);
+  half_kick();
   time_ += settings_.time_step;
   ++step_count_;
   check_health();
@@ -47,30 +49,39 @@ void Simulation::scale_positions(const Vec3& centre, double factor) {
 }
 
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
-// Whether the neighbour list must be rebuilt is decided in the same pass (one parallel loop per
-// step instead of two): a particle that has moved more than half the skin since the last
-// rebuild, or a wall whose surface has (NeighborSearch::needs_rebuild, same rule).
-bool Simulation::kick_and_drift() {
+void Simulation::kick_and_drift() {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
-  const std::vector<Vec3>& at_build = neighbors_.position_at_build();
-  const bool list_matches = at_build.size() == p.size();
-  const double limit2 = neighbors_.drift_limit2();
-  int moved = 0;
-#pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
     p.position[i] += dt * p.velocity[i];
     p.rotation[i] += dt * p.angular_velocity[i];
-    if (list_matches) moved |= norm2(p.position[i] - at_build[i]) > limit2 ? 1 : 0;
   }
   for (Wall& w : walls_) {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
     w.point += dt * w.velocity;
   }
-  return !list_matches || moved != 0 || neighbors_.walls_need_rebuild(walls_);
+}
+
+void Simulation::half_kick() {
+  const double half = 0.5 * settings_.time_step;
+  ParticleStore& p = particles_;
+  const long n = static_cast<long>(p.size());
+  double max_speed2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_speed2) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    const double v2 = norm2(p.velocity[i]);
+    // NaN compares false: a NaN speed is recorded as infinite.
+    max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
+  }
+  max_speed2_ = max_speed2;
+  for (Wall& w : walls_)
+    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
 
 void Simulation::set_wall_geometry(size_t k, const Wall& g) {
@@ -100,6 +111,52 @@ void Simulation::compute_forces(double drift) {
   compute_pair_forces(drift);
   compute_wall_forces(drift);
   gather();
+}
+
+// Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
+// where it is second (opposite force), its wall contacts and its external force (only while
+// some particle has one, so that a run without them adds nothing, not even a zero).
+void Simulation::gather() {
+  ParticleStore& p = particles_;
+  const PairContacts& c = pairs_;
+  const WallContacts& wc = wall_contacts_;
+  const Vec3 g = settings_.gravity;
+  const long n = static_cast<long>(p.size());
+  const bool external = external_forces_;
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
+    Vec3 t;
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      f += c.force_on_first[e];
+      t += c.torque_on_first[e];
+    }
+    for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
+      const uint32_t e = c.col_pair[k];
+      f -= c.force_on_first[e];
+      t += c.torque_on_second[e];
+    }
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
+      f += wc.force_on_particle[e];
+      t += wc.torque_on_particle[e];
+    }
+    if (external) f += p.external_force[i];
+    p.force[i] = f;
+    p.torque[i] = t;
+  }
+  // Wall totals, serial in entry order (few entries; deterministic).
+  for (Wall& w : walls_) {
+    w.force = Vec3{};
+    w.contact_stiffness = 0.0;
+    w.contact_count = 0;
+  }
+  for (size_t e = 0; e < wc.size(); ++e) {
+    if (wc.normal_stiffness[e] == 0.0) continue;
+    Wall& w = walls_[wc.wall[e]];
+    w.force -= wc.force_on_particle[e];
+    w.contact_stiffness += wc.normal_stiffness[e];
+    ++w.contact_count;
+  }
 }
 
 const char* Simulation::step_key() const {

@@ -1,9 +1,7 @@
 // The step loop. One step of velocity Verlet (kick-drift-kick) for translation and rotation of
 // spheres, read top-down as named stages:
-//   half kick + drift (and the staleness check of the list) -> move walls -> neighbour list (if
-//   stale) -> pair and wall forces -> gather per particle -> half kick -> health check.
-// Two parallel regions per step: the drift, and the forces with the closing kick (one barrier
-// between the contacts and the gather); the rebuild, when due, between them.
+//   half kick + drift -> move walls -> neighbour list (if stale) -> pair forces -> wall forces
+//   -> gather per particle -> half kick -> health check.
 // The core knows nothing of laboratory tests; controllers change wall velocities between steps.
 #pragma once
 
@@ -100,11 +98,8 @@ class Simulation {
   double max_overlap_fraction() const { return max_overlap_fraction_; }
 
  private:
-  bool kick_and_drift();  // true: the neighbour list must be rebuilt
-  // The step's forces at the new positions (contacts, gather) and the closing half kick, in one
-  // parallel region.
-  void forces_and_closing_kick();
-  void wall_totals();  // the walls' force and contact count from the wall contacts (serial)
+  void kick_and_drift();
+  void half_kick();
   // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
   // the first evaluation of a fresh state, when no contact spring may advance).
   void compute_forces(double drift);
