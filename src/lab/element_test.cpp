@@ -70,6 +70,15 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
                "more particles than fit in the box: they would fill {:.2f} of it, above random "
                "close packing (0.64)",
                needed));
+  // The box is the specimen's size; beads that fill a tiny part of it would be compacted over
+  // many box lengths, the walls driven at a speed in proportion (a 1e9 mm box blew up at
+  // 1.8 km/s).
+  if (needed < 0.1)
+    t.fail(
+        "box",
+        fmt::format("the {} beads fill only {:.2g} of this box; expected at least 0.1 (the box is "
+                    "the specimen's size: a packing fills 0.55-0.64 of it)",
+                    p.count, needed));
   p.confining_stress = t.number_or("confining_stress", Quantity::pressure, p.confining_stress);
   if (!(p.confining_stress > 0)) t.fail("confining_stress", "expected a confining stress > 0 Pa");
   const toml::node* target =

@@ -73,6 +73,9 @@ def triaxial_box_smaller_than_particle():
 
 def triaxial_more_particles_than_fit():
     expect_bad_triaxial("count = 500", "count = 5000", "test.count", "more particles than fit")
+    # A box the beads hardly fill (a 1e9 mm side once blew up at 1.8 km/s while compacting).
+    expect_bad_triaxial('box = ["14 mm", "14 mm", "28 mm"]', 'box = ["1e9 mm", "14 mm", "28 mm"]', "test.box",
+                        "fill only")
 
 
 def lab_config_with_scene_tables():
