@@ -5,7 +5,6 @@
 #pragma once
 
 #include <chrono>
-#include <string>
 
 #include "io/interrupt.hpp"
 
@@ -16,7 +15,7 @@ class CheckpointClock {
   // `read_clock_every`: the wall clock is read at every that many polls (the interrupt flag at
   // every poll), so that a loop of cheap steps can poll at each step.
   explicit CheckpointClock(double interval_s, long read_clock_every = 1)
-      : interval_s_(interval_s), read_clock_every_(read_clock_every) {}
+      : interval_s_(interval_s), read_clock_every_(read_clock_every > 0 ? read_clock_every : 1) {}
 
   // Wall time since this session (this process's share of the run) began, s: what a save adds
   // to the wall time of the sessions before it.

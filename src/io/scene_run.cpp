@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <omp.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>

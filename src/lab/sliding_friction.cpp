@@ -85,14 +85,19 @@ std::vector<Wall> bed_walls(const SlidingFrictionSettings& s, int bead) {
 }
 
 // A pull's simulation restored from a checkpoint; ConfigError naming the file when the state is
-// damaged or is not a bed with its slider (`wall_count` walls).
+// damaged or is not this test's pull: a bed with its slider (`wall_count` walls), integrated with
+// the `expected` settings, the slider pair at the pull's friction.
 Simulation restored_pull(const PullState& pull, const PairTable& table, size_t wall_count,
+                         const SimulationSettings& expected, int bead, int slider,
                          const std::string& file) {
   try {
     StateReader in(pull.simulation);
     Simulation sim(in, table);
-    if (!in.at_end() || sim.walls().size() != wall_count)
-      throw std::runtime_error("not the state of a pull");
+    const SimulationSettings& got = sim.settings();
+    if (!in.at_end() || sim.walls().size() != wall_count || got.time_step != expected.time_step ||
+        !(got.gravity == expected.gravity) || got.skin != expected.skin ||
+        sim.pair_table()(bead, slider).friction != pull.friction)
+      throw std::runtime_error("not the state of this test's pull");
     return sim;
   } catch (const std::runtime_error& e) {
     throw ConfigError(fmt::format("{}: damaged checkpoint ({})", file, e.what()));
@@ -154,9 +159,10 @@ LoadRun pull_slider(const Bed& bed, const SlidingFrictionSettings& s, const Pair
   const double friction = table(bead, slider_material).friction;
   std::optional<PullState> resumed =
       checkpoints ? checkpoints->take_pull(friction, load) : std::nullopt;
-  Simulation sim =
-      resumed ? restored_pull(*resumed, table, walls.size(), checkpoints->path())
-              : Simulation(bed.particles, walls, table, settings_for(s, table, bead, density));
+  const SimulationSettings settings = settings_for(s, table, bead, density);
+  Simulation sim = resumed ? restored_pull(*resumed, table, walls.size(), settings, bead,
+                                           slider_material, checkpoints->path())
+                           : Simulation(bed.particles, walls, table, settings);
 
   // The rope and force sensor: a spring with a parallel dashpot that damps the slider-rope
   // oscillator critically (c = 2 sqrt(k m)), as the slow laboratory pull is quasi-static; the
@@ -243,15 +249,17 @@ SlidingFrictionResult simulate_sliding_friction(const SlidingFrictionSettings& s
   const int bead = table.find(s.bead_material), slider = table.find(s.slider_material);
   SlidingFrictionResult out;
   out.friction_input = table(bead, slider).friction;
-  // The bed: from the checkpoint of an interrupted run, else deposited (and recorded there).
-  const SavedBed* saved = checkpoints ? checkpoints->bed(out.friction_input) : nullptr;
+  // A deposited bed: from the checkpoint of an interrupted run, else deposited (and recorded
+  // there). A fixed patch is laid again (at once, and exactly the same).
+  const bool keep = checkpoints && !s.fixed_bed;
+  const SavedBed* saved = keep ? checkpoints->bed(out.friction_input) : nullptr;
   Bed bed;
   if (saved) {
     bed.particles = saved->particles, bed.top = saved->top;
-    if (!s.fixed_bed) bed.walls = bed_walls(s, bead);  // a fixed patch needs no box
+    bed.walls = bed_walls(s, bead);
   } else {
     bed = make_bed(s, table, bead, density);
-    if (checkpoints) checkpoints->record_bed(out.friction_input, bed.particles, bed.top);
+    if (keep) checkpoints->record_bed(out.friction_input, bed.particles, bed.top);
   }
   out.bead_count = static_cast<int>(bed.particles.size());
   out.bed_height = bed.top;

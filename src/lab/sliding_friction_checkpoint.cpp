@@ -27,6 +27,37 @@ std::vector<std::array<double, 4>> read_record(StateReader& in) {
   return record;
 }
 
+// A yes/no flag (one byte, 0 or 1: any other value is damage).
+bool flag(StateReader& in, const char* what) {
+  const uint8_t v = in.value<uint8_t>();
+  if (v > 1) throw std::runtime_error(fmt::format("{} is not a yes/no flag", what));
+  return v == 1;
+}
+
+// A deposited bed as read, checked as thoroughly as a restored simulation's particles.
+void check_bed(const ParticleStore& p, int bead_material) {
+  const size_t count = p.size();
+  const_cast<ParticleStore&>(p).for_each_field([&](const auto& field) {
+    if (field.size() != count) throw std::runtime_error("bed fields of different lengths");
+  });
+  auto finite3 = [](const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  for (size_t i = 0; i < count; ++i) {
+    if (p.material[i] != bead_material)
+      throw std::runtime_error(fmt::format("bed bead {} has material index {} (expected {})", i,
+                                           p.material[i], bead_material));
+    if (p.id[i] >= count)
+      throw std::runtime_error(fmt::format("bed bead {} has id {} of {}", i, p.id[i], count));
+    if (!(finite3(p.position[i]) && finite3(p.velocity[i]) && finite3(p.angular_velocity[i]) &&
+          std::isfinite(p.radius[i]) && p.radius[i] > 0 && std::isfinite(p.inverse_mass[i]) &&
+          p.inverse_mass[i] >= 0 && std::isfinite(p.inverse_inertia[i]) &&
+          p.inverse_inertia[i] >= 0))
+      throw std::runtime_error(fmt::format(
+          "bed bead {} has a non-finite or negative position, velocity, radius or mass", i));
+  }
+}
+
 double finite(StateReader& in, const char* what) {
   const double v = in.value<double>();
   if (!std::isfinite(v)) throw std::runtime_error(fmt::format("{} is not finite", what));
@@ -66,33 +97,19 @@ SlidingFrictionCheckpoints SlidingFrictionCheckpoints::resume(const std::string&
       run.record = read_record(in);
       out.pulls_.emplace_back(friction, std::move(run));
     }
-    if (in.value<bool>()) {
+    for (uint64_t n = in.count(2 * sizeof(double)); n > 0; --n) {
       SavedBed bed;
       bed.friction = finite(in, "the bed's friction");
       bed.top = finite(in, "the bed's top");
       bed.particles.for_each_field([&](auto& field) { in.array(field); });
-      const ParticleStore& p = bed.particles;
-      const size_t count = p.size();
-      bed.particles.for_each_field([&](const auto& field) {
-        if (field.size() != count) throw std::runtime_error("bed fields of different lengths");
-      });
-      for (size_t i = 0; i < count; ++i) {
-        if (p.material[i] != bead_material)
-          throw std::runtime_error(fmt::format("bed bead {} has material index {} (expected {})", i,
-                                               p.material[i], bead_material));
-        const Vec3& x = p.position[i];
-        if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) &&
-              std::isfinite(p.radius[i]) && p.radius[i] > 0))
-          throw std::runtime_error(
-              fmt::format("bed bead {} has a non-finite position or radius", i));
-      }
-      out.bed_ = std::move(bed);
+      check_bed(bed.particles, bead_material);
+      out.beds_.push_back(std::move(bed));
     }
-    if (in.value<bool>()) {
+    if (flag(in, "the pull-under-way flag")) {
       PullState pull;
       pull.friction = finite(in, "the pull's friction");
       pull.load = finite(in, "the pull's load");
-      pull.pulling = in.value<bool>();
+      pull.pulling = flag(in, "the pull's phase");
       pull.anchor = finite(in, "the rope's anchor");
       pull.start_anchor = finite(in, "the rope's start");
       pull.start_time = finite(in, "the pull's start time");
@@ -119,7 +136,9 @@ const LoadRun* SlidingFrictionCheckpoints::finished_pull(double friction, double
 }
 
 const SavedBed* SlidingFrictionCheckpoints::bed(double friction) const {
-  return bed_ && bed_->friction == friction ? &*bed_ : nullptr;
+  for (const SavedBed& b : beds_)
+    if (b.friction == friction) return &b;
+  return nullptr;
 }
 
 std::optional<PullState> SlidingFrictionCheckpoints::take_pull(double friction, double load) {
@@ -131,7 +150,13 @@ std::optional<PullState> SlidingFrictionCheckpoints::take_pull(double friction, 
 
 void SlidingFrictionCheckpoints::record_bed(double friction, const ParticleStore& particles,
                                             double top) {
-  bed_ = SavedBed{friction, particles, top};
+  // Every trial's bed is kept, so that a resumed inverse search deposits none of them again.
+  for (SavedBed& b : beds_)
+    if (b.friction == friction) {
+      b = SavedBed{friction, particles, top};
+      return;
+    }
+  beds_.push_back(SavedBed{friction, particles, top});
 }
 
 void SlidingFrictionCheckpoints::record_pull(double friction, const LoadRun& run) {
@@ -147,16 +172,15 @@ void SlidingFrictionCheckpoints::save(const PullState& pull) const {
     out.value(friction), out.value(run.load), out.value(run.mean_force), out.value(run.force_sd);
     write_record(out, run.record);
   }
-  out.value(bed_.has_value());
-  if (bed_) {
-    out.value(bed_->friction), out.value(bed_->top);
-    const_cast<ParticleStore&>(bed_->particles).for_each_field([&](const auto& f) {
-      out.array(f);
-    });
+  out.value(static_cast<uint64_t>(beds_.size()));
+  for (const SavedBed& bed : beds_) {
+    out.value(bed.friction), out.value(bed.top);
+    const_cast<ParticleStore&>(bed.particles).for_each_field([&](const auto& f) { out.array(f); });
   }
-  out.value(true);
-  out.value(pull.friction), out.value(pull.load), out.value(pull.pulling), out.value(pull.anchor),
-      out.value(pull.start_anchor), out.value(pull.start_time), out.value(pull.pull_steps);
+  out.value(uint8_t{1});
+  out.value(pull.friction), out.value(pull.load), out.value(static_cast<uint8_t>(pull.pulling)),
+      out.value(pull.anchor), out.value(pull.start_anchor), out.value(pull.start_time),
+      out.value(pull.pull_steps);
   write_record(out, pull.record);
   out.text(pull.simulation);
   write_sealed(out, path_);

@@ -32,7 +32,8 @@ struct PullState {
   std::string simulation;                       // Simulation::save_state bytes
 };
 
-// The deposited bed of one trial friction.
+// The deposited bed of one trial friction (kept for each, so a resumed inverse search deposits
+// none again).
 struct SavedBed {
   double friction = 0.0;
   ParticleStore particles;
@@ -79,7 +80,7 @@ class SlidingFrictionCheckpoints {
   CheckpointClock clock_;
   double wall_time_before_ = 0.0;  // s, sessions before this one
   std::vector<std::pair<double, LoadRun>> pulls_;
-  std::optional<SavedBed> bed_;
+  std::vector<SavedBed> beds_;  // one per trial friction
   std::optional<PullState> pull_;
 };
 
