@@ -59,7 +59,7 @@ struct ElementTestConfig {
 };
 
 // Reads the shared keys of [test] (materials, specimen, loading, outputs) with the test's own
-// defaults; the caller reads its own keys from `t` and calls t.finish().
+// defaults; the caller reads its own keys from `t` and calls t.finish() (element_test_keys.cpp).
 ElementTestConfig read_element_test_keys(const std::string& path, const toml::table& root,
                                          TableReader& t, const ElementTestSettings& defaults = {});
 
