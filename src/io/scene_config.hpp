@@ -12,6 +12,7 @@
 #include "contact/material.hpp"
 #include "core/vec3.hpp"
 #include "geometry/wall.hpp"
+#include "io/checkpoint_clock.hpp"
 
 namespace grainlab {
 
@@ -62,9 +63,8 @@ struct OutputSettings {
   bool trace_all = true;
   std::vector<uint32_t> trace_ids;  // when not trace_all
   bool vtk = false;
-  double vtk_interval = 0.0;  // s
-  double checkpoint_interval =
-      60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
+  double vtk_interval = 0.0;                                   // s
+  double checkpoint_interval = default_checkpoint_interval_s;  // s of wall time
 };
 
 struct SceneConfig {

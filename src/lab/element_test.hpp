@@ -41,8 +41,7 @@ struct ElementTestSettings {
   double output_strain_interval = 0.001;
   bool vtk = false;
   double vtk_strain_interval = 0.01;
-  double checkpoint_interval =
-      60.0;  // s of wall time between checkpoints (cost: bench/checkpoint_cost.py)
+  double checkpoint_interval = default_checkpoint_interval_s;  // s of wall time
   // s simulated, at most, for the re-equilibration under the confining stress before the loading
   double re_equilibration_max_time = 0.02;
   // m/s^2 along -z from the re-equilibration on (the specimen is prepared without it); only the

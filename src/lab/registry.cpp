@@ -88,6 +88,20 @@ toml::table stored_config(const std::string& file, const CheckpointHeader& h) {
   }
 }
 
+// Continues a run that picks its own checkpoint up (an element test's preparation.bin, a
+// sliding-friction test's checkpoint.bin): the test named in `file`'s header is run again with
+// the config stored there. ConfigError when that test cannot be resumed this way (`resumable`).
+void replay_stored_run(const std::string& file, const CheckpointHeader& h, const char* kind,
+                       bool (*resumable)(const LabTestEntry&), const RunOptions& options) {
+  const toml::table root = stored_config(file, h);
+  const LabTestEntry& e = entry_for(h.config_path, root);
+  if (h.type != e.type || !resumable(e))
+    throw ConfigError(fmt::format("{}: a {} {} cannot be resumed", file, h.type, kind));
+  RunOptions resumed = options;
+  resumed.resumed_config = h.config_text;
+  e.run(h.config_path, root, resumed);
+}
+
 }  // namespace
 
 void resume_lab_test(const RunOptions& options) {
@@ -98,26 +112,17 @@ void resume_lab_test(const RunOptions& options) {
   const std::string checkpoint = options.out_dir + "/checkpoint.bin";
   const std::string preparation = options.out_dir + "/preparation.bin";
   if (SlidingFrictionCheckpoints::is_one(checkpoint)) {
-    // The test replays with its stored config and takes what was done from the checkpoint.
-    const CheckpointHeader h = SlidingFrictionCheckpoints::peek(checkpoint);
-    const toml::table root = stored_config(checkpoint, h);
-    if (h.type != "sliding_friction" || entry_for(h.config_path, root).type != h.type)
-      throw ConfigError(fmt::format("{}: a {} checkpoint cannot be resumed", checkpoint, h.type));
-    RunOptions resumed = options;
-    resumed.resumed_config = h.config_text;
-    run_sliding_friction(h.config_path, root, resumed);
+    // The test takes what was done from its checkpoint.
+    replay_stored_run(
+        checkpoint, SlidingFrictionCheckpoints::peek(checkpoint), "checkpoint",
+        [](const LabTestEntry& e) { return e.run == run_sliding_friction; }, options);
     return;
   }
   if (!std::filesystem::exists(checkpoint) && std::filesystem::exists(preparation)) {
     // Killed before the loading's first checkpoint: the preparation continues, then the run.
-    const CheckpointHeader h = peek_preparation_checkpoint(preparation);
-    const toml::table root = stored_config(preparation, h);
-    const LabTestEntry& e = entry_for(h.config_path, root);
-    if (h.type != e.type || !e.element_config)
-      throw ConfigError(fmt::format("{}: a {} preparation cannot be resumed", preparation, h.type));
-    RunOptions resumed = options;
-    resumed.resumed_config = h.config_text;
-    e.run(h.config_path, root, resumed);
+    replay_stored_run(
+        preparation, peek_preparation_checkpoint(preparation), "preparation",
+        [](const LabTestEntry& e) { return e.element_config != nullptr; }, options);
     return;
   }
   const CheckpointHeader h = peek_checkpoint(checkpoint);

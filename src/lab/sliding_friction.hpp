@@ -47,7 +47,6 @@ struct SlidingFrictionSettings {
   double dt_fraction = 0.1;
   double gravity = 9.81;  // m/s^2
   unsigned long seed = 1;
-  double checkpoint_interval = 60.0;  // s of wall time between checkpoints
 };
 
 struct LoadRun {

@@ -135,8 +135,8 @@ void run_sliding_friction(const std::string& path, const toml::table& root,
     t.fail("speed", fmt::format("a pull of slide_distance / speed would take {:.3g} steps, more "
                                 "than grainlab runs ({:.0e})",
                                 pull_steps, max_steps_per_run));
-  const double checkpoint_interval = t.number_or("checkpoint_interval", Quantity::time,
-                                                 SlidingFrictionSettings{}.checkpoint_interval);
+  const double checkpoint_interval =
+      t.number_or("checkpoint_interval", Quantity::time, default_checkpoint_interval_s);
   if (!(checkpoint_interval > 0))
     t.fail("checkpoint_interval", "expected a wall-time interval > 0 s");
   t.finish();
