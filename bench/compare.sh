@@ -2,6 +2,8 @@
 # Side-by-side benchmark: grainlab vs LAMMPS (and LIGGGHTS when a deck for it exists) on the
 # same dense packing, interleaved, >= 3 repetitions, 1 and 2 threads / MPI ranks.
 # Prints the medians and the ratio grainlab/peer; appends them to bench/results/compare-<host>.csv.
+# grainlab runs with the pair kernel the CPU allows (core/pair_kernel_simd.hpp); the row
+# "grainlab-scalar" is the same binary with GRAINLAB_SIMD=off (the scalar pair loop).
 #
 #   bench/compare.sh [--build DIR] [--workload dense-11k] [--steps 2000] [--reps 3]
 #
@@ -55,6 +57,8 @@ run_grainlab() {  # threads
     --steps "$steps" --warmup "$warmup" --label compare | awk '$1 ~ /^[0-9]+$/ && NF >= 9 {print $3}'
 }
 run_peer() {  # code threads
+  # grainlab's own scalar pair loop (GRAINLAB_SIMD=off), to show what the vectorised kernel gains
+  if [[ $1 == grainlab-scalar ]]; then GRAINLAB_SIMD=off run_grainlab "$2"; return; fi
   local exe=$1 ranks=$2 log=$work/$1-$2.log deck=$here/$1/dense.in peer_data=$data
   local cmd=("$exe")
   [[ $exe == lammps ]] && cmd=(lmp)
@@ -66,7 +70,7 @@ run_peer() {  # code threads
   awk '/^Loop time of/ {t=$4; n=$9; m=$12} END {if (t > 0) printf "%.6g\n", m * n / t; else print "nan"}' "$log"
 }
 
-peers=(lammps)
+peers=(grainlab-scalar lammps)
 [[ -f $here/liggghts/dense.in ]] && command -v liggghts >/dev/null && peers+=(liggghts)
 declare -A samples
 for rep in $(seq 1 "$reps"); do

@@ -141,8 +141,11 @@ int main(int argc, char** argv) {
       std::fclose(f);
     }
   }
-  fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}\n", name, n, steps, warmup,
-             grainlab::version_string);
+  // the pair force loop in use (GRAINLAB_SIMD chooses it; core/pair_kernel_simd.hpp)
+  const std::string kernel = grainlab::select_simd_pair_kernel().name;
+  const std::string csv_label = label.empty() ? kernel : label + " " + kernel;
+  fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}  pair kernel {}\n", name, n,
+             steps, warmup, grainlab::version_string, kernel);
   fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8}\n", "threads", "rep",
              "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash",
              "entries");
@@ -174,7 +177,7 @@ int main(int argc, char** argv) {
         char date[32];
         std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
         std::fprintf(f, "%s,%s,%s,%s,%ld,%d,%ld,%.4f,%.6g,%.2f,%ld,%.4f,%.1f,%.0f,%016llx,%.3f\n",
-                     date, grainlab::version_string, label.c_str(), name.c_str(), n, t, steps,
+                     date, grainlab::version_string, csv_label.c_str(), name.c_str(), n, t, steps,
                      seconds, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n,
                      static_cast<unsigned long long>(hash), entries);
         std::fclose(f);

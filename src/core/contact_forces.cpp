@@ -2,6 +2,8 @@
 // candidates. Each writes the force and torques of its contacts into the contact arrays (no
 // shared accumulators); Simulation::gather sums them per particle. The optional pieces of the
 // contact law are chosen once per call through the template switches.
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,9 +27,77 @@ inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
   return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
 }
 
-// dt: the time step (for the end-of-step velocity estimate); drift: the time the positions last
-// drifted over, dt after a drift and 0 when forces are evaluated on a fresh state (at
-// construction), when no spring may advance and no contact can have begun "during" a step.
+// One entry e (row i) of the half list: writes its force, torques and history and returns
+// overlap / min(r_i, r_j), 0 when the spheres do not touch. dt: the time step (for the
+// end-of-step velocity estimate); drift: the time the positions last drifted over, dt after a
+// drift and 0 when forces are evaluated on a fresh state (at construction), when no spring may
+// advance and no contact can have begun "during" a step.
+// xi, ri: position and radius of particle i, read once per row by the caller.
+template <bool R, bool T, bool RF>
+[[gnu::always_inline]] inline double pair_entry(const ParticleStore& p,
+                                                const PairParams* row_params, PairContacts& c,
+                                                size_t i, const Vec3& xi, double ri, uint32_t e,
+                                                double dt, double drift) {
+  const uint32_t j = c.partner[e];
+  const double rj = p.radius[j];
+  const Vec3 d = p.position[j] - xi;
+  const double reach = ri + rj;
+  const double dist2 = norm2(d);
+  if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
+    c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
+    c.normal_force[e] = 0.0;
+    c.sliding_spring[e] = Vec3{};
+    if constexpr (R) c.rolling_angle[e] = Vec3{};
+    if constexpr (T) c.twisting_angle[e] = 0.0;
+    if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+    return 0.0;
+  }
+  const double dist = std::sqrt(dist2);
+  ContactKinematics k;
+  k.normal = (1.0 / dist) * d;
+  k.overlap = reach - dist;
+  if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
+  // contact point halfway through the overlap
+  const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
+  set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
+                        p.angular_velocity[j], lever_j, 0.5);
+  set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
+                        velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
+  double inertia = 0.0, contact_radius = 0.0;
+  if constexpr (R || T) {
+    inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
+    contact_radius = contact_circle_radius(ri, rj, dist);
+  }
+  ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
+                      T ? &c.twisting_angle[e] : nullptr,
+                      RF ? &c.rolling_force_displacement[e] : nullptr};
+  // A contact whose overlap is no more than twice the step's growth may have begun in this
+  // step: undo the drift (exactly: positions moved by drift v) to find the overlap before it.
+  // The growth is the normal increment plus the curvature term |s_t|^2 / (2 D) of the
+  // relative drift s (sideways motion also closes the distance).
+  double touch_fraction = 0.0;
+  if (drift > 0.0) {
+    const Vec3 s = drift * (p.velocity[j] - p.velocity[i]);
+    const double s_n = dot(s, k.normal);
+    const double curvature = (norm2(s) - s_n * s_n) / (2.0 * dist);
+    if (k.overlap <= 2.0 * (k.overlap_increment + curvature)) {
+      touch_fraction = first_touch_fraction(reach - norm(d - s), k.overlap);
+      if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
+    }
+  }
+  const PairParams& pair = row_params[p.material[j]];
+  const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
+  ContactResponse r =
+      contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
+  if (touch_fraction > 0.0)
+    charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
+  c.force_on_first[e] = r.force_on_a;
+  c.torque_on_first[e] = r.torque_on_a;
+  c.torque_on_second[e] = r.torque_on_b;
+  c.normal_force[e] = r.normal_force;
+  return k.overlap / std::min(ri, rj);
+}
+
 template <bool R, bool T, bool RF>
 double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt,
                    double drift) {
@@ -37,69 +107,65 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
   double max_fraction = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
+    const PairParams* row_params = params + p.material[i] * materials;
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i];
-    const PairParams* row_params = params + p.material[i] * materials;
-    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-      const uint32_t j = c.partner[e];
-      const double rj = p.radius[j];
-      const Vec3 d = p.position[j] - xi;
-      const double reach = ri + rj;
-      const double dist2 = norm2(d);
-      if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
-        c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
-        c.normal_force[e] = 0.0;
-        c.sliding_spring[e] = Vec3{};
-        if constexpr (R) c.rolling_angle[e] = Vec3{};
-        if constexpr (T) c.twisting_angle[e] = 0.0;
-        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
-        continue;
-      }
-      const double dist = std::sqrt(dist2);
-      ContactKinematics k;
-      k.normal = (1.0 / dist) * d;
-      k.overlap = reach - dist;
-      if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
-      // contact point halfway through the overlap
-      const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
-      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
-                            p.angular_velocity[j], lever_j, 0.5);
-      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
-                            velocity_at_step_end(p, j, dt), spin_at_step_end(p, j, dt), lever_j);
-      double inertia = 0.0, contact_radius = 0.0;
-      if constexpr (R || T) {
-        inertia = 1.0 / (p.inverse_inertia[i] + p.inverse_inertia[j]);
-        contact_radius = contact_circle_radius(ri, rj, dist);
-      }
-      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
-                          T ? &c.twisting_angle[e] : nullptr,
-                          RF ? &c.rolling_force_displacement[e] : nullptr};
-      // A contact whose overlap is no more than twice the step's growth may have begun in this
-      // step: undo the drift (exactly: positions moved by drift v) to find the overlap before it.
-      // The growth is the normal increment plus the curvature term |s_t|^2 / (2 D) of the
-      // relative drift s (sideways motion also closes the distance).
-      double touch_fraction = 0.0;
-      if (drift > 0.0) {
-        const Vec3 s = drift * (p.velocity[j] - p.velocity[i]);
-        const double s_n = dot(s, k.normal);
-        const double curvature = (norm2(s) - s_n * s_n) / (2.0 * dist);
-        if (k.overlap <= 2.0 * (k.overlap_increment + curvature)) {
-          touch_fraction = first_touch_fraction(reach - norm(d - s), k.overlap);
-          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
-        }
-      }
-      const PairParams& pair = row_params[p.material[j]];
-      const NormalParams normal{c.normal_stiffness[e], c.normal_damping[e]};
-      ContactResponse r =
-          contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
-      if (touch_fraction > 0.0)
-        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
-      c.force_on_first[e] = r.force_on_a;
-      c.torque_on_first[e] = r.torque_on_a;
-      c.torque_on_second[e] = r.torque_on_b;
-      c.normal_force[e] = r.normal_force;
-      max_fraction = std::max(max_fraction, k.overlap / std::min(ri, rj));
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e)
+      max_fraction =
+          std::max(max_fraction, pair_entry<R, T, RF>(p, row_params, c, i, xi, ri, e, dt, drift));
+  }
+  return max_fraction;
+}
+
+// The reference law through the vectorised kernel (core/pair_kernel_simd.hpp). Each thread
+// takes a contiguous block of rows, as schedule(static) would, and runs the scalar law on the
+// entries the kernel hands back (contacts that began in this step). Every contact's arithmetic
+// is the same whichever thread or lane computes it.
+double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairTable& table,
+                        PairContacts& c, std::vector<uint32_t>& deferred, double dt, double drift) {
+  const long n = static_cast<long>(p.size());
+  if (deferred.size() < c.size()) deferred.resize(c.size());
+  const SimdPairInput in{&p.position[0].x,
+                         &p.velocity[0].x,
+                         &p.angular_velocity[0].x,
+                         &p.force[0].x,
+                         &p.torque[0].x,
+                         p.radius.data(),
+                         p.inverse_mass.data(),
+                         p.inverse_inertia.data(),
+                         p.material.data(),
+                         &table(0, 0),
+                         table.material_count(),
+                         c.row_start.data(),
+                         c.partner.data(),
+                         c.normal_stiffness.data(),
+                         c.normal_damping.data(),
+                         &c.sliding_spring[0].x,
+                         &c.force_on_first[0].x,
+                         &c.torque_on_first[0].x,
+                         &c.torque_on_second[0].x,
+                         c.normal_force.data(),
+                         dt,
+                         drift};
+  const int materials = table.material_count();
+  double max_fraction = 0.0;
+#pragma omp parallel reduction(max : max_fraction) if (n > parallel_threshold)
+  {
+    const long threads = omp_get_num_threads(), thread = omp_get_thread_num();
+    const long block = (n + threads - 1) / threads;
+    const long first = std::min(n, thread * block), end = std::min(n, first + block);
+    uint32_t* my_deferred = deferred.data() + c.row_start[first];
+    long deferred_count = 0;
+    double m = kernel(in, first, end, my_deferred, deferred_count);
+    for (long k = 0; k < deferred_count; ++k) {
+      const uint32_t e = my_deferred[k];
+      const size_t i =
+          std::upper_bound(&c.row_start[first], &c.row_start[end] + 1, e) - c.row_start.data() - 1;
+      const PairParams* row_params = &table(0, 0) + p.material[i] * materials;
+      m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i],
+                                                      p.radius[i], e, dt, drift));
     }
+    max_fraction = std::max(max_fraction, m);
   }
   return max_fraction;
 }
@@ -245,6 +311,11 @@ void Simulation::refresh_contact_constants() {
 }
 
 void Simulation::compute_pair_forces(double drift) {
+  if (simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0) {
+    max_overlap_fraction_ = pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_,
+                                             deferred_pairs_, settings_.time_step, drift);
+    return;
+  }
   max_overlap_fraction_ =
       dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift);
 }

@@ -12,6 +12,7 @@
 #include "contact/pair_table.hpp"
 #include "core/contact_store.hpp"
 #include "core/neighbor_search.hpp"
+#include "core/pair_kernel_simd.hpp"
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
@@ -96,6 +97,8 @@ class Simulation {
   double kinetic_energy() const;     // translational + rotational, J
   long touching_pair_count() const;  // particle-particle contacts with F_n > 0
   double max_overlap_fraction() const { return max_overlap_fraction_; }
+  // Which pair force loop runs: "scalar", "sse2", "avx2" or "avx512" (core/pair_kernel_simd.hpp).
+  const char* pair_kernel_name() const { return simd_pair_kernel_.name; }
 
  private:
   void kick_and_drift();
@@ -125,6 +128,10 @@ class Simulation {
   double max_overlap_fraction_ = 0.0;
   double max_speed2_ = 0.0;
   bool external_forces_ = false;  // some particle has a non-zero external force
+  // The vectorised pair loop for the reference law (no rolling, twisting or rolling-force piece),
+  // and room for the entries it hands back (first touch in the step), one slot per entry.
+  SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
+  std::vector<uint32_t> deferred_pairs_;
   std::vector<StepListener*> listeners_;
 };
 

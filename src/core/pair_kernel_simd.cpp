@@ -1,0 +1,334 @@
+// The vectorised particle-pair force loop (core/pair_kernel_simd.hpp). This file is compiled
+// three times, with GRAINLAB_SIMD_NS = simd_sse2, simd_avx2 or simd_avx512 and the matching
+// -m flags, always with -ffp-contract=off (src/core/CMakeLists.txt). Everything here has
+// internal linkage or is a compiler builtin: no inline function compiled for one instruction set
+// can be picked by the linker for code that runs on another.
+//
+// The lane arithmetic mirrors the scalar law statement by statement; the comments name the
+// scalar function each block reproduces. Change both together: the bit-identity test
+// (tests/core/test_pair_kernel_simd.cpp) fails on any difference.
+#include "core/pair_kernel_simd.hpp"
+
+#include <immintrin.h>
+
+#include "contact/pair_table.hpp"
+
+#ifndef GRAINLAB_SIMD_NS
+#error "GRAINLAB_SIMD_NS must name the instruction set's namespace"
+#endif
+
+namespace grainlab::GRAINLAB_SIMD_NS {
+namespace {
+
+#define GRAINLAB_LANES_INLINE [[gnu::always_inline]] inline
+
+constexpr int lanes = 8;
+using vd = double __attribute__((vector_size(64)));
+using vmask = long long __attribute__((vector_size(64)));  // per lane: -1 true, 0 false
+
+GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
+#if defined(__AVX512F__)
+  return _mm512_mask_sqrt_pd(a, 0xFF, a);  // all lanes (the unmasked form warns in GCC 12)
+#elif defined(__AVX__)
+  const __m256d lo = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 0, 1, 2, 3));
+  const __m256d hi = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 4, 5, 6, 7));
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+  const __m128d q0 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 0, 1));
+  const __m128d q1 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 2, 3));
+  const __m128d q2 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 4, 5));
+  const __m128d q3 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 6, 7));
+  const auto lo = __builtin_shufflevector(q0, q1, 0, 1, 2, 3);
+  const auto hi = __builtin_shufflevector(q2, q3, 0, 1, 2, 3);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#endif
+}
+
+// A 3-vector per lane, with the operations of core/vec3.hpp in the same association order.
+struct V3 {
+  vd x, y, z;
+};
+GRAINLAB_LANES_INLINE V3 operator+(const V3& a, const V3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+GRAINLAB_LANES_INLINE V3 operator-(const V3& a, const V3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+GRAINLAB_LANES_INLINE V3 operator*(vd s, const V3& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+GRAINLAB_LANES_INLINE V3 operator*(double s, const V3& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+GRAINLAB_LANES_INLINE vd dot(const V3& a, const V3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+GRAINLAB_LANES_INLINE V3 cross(const V3& a, const V3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+GRAINLAB_LANES_INLINE V3 select(vmask m, const V3& a, const V3& b) {
+  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
+}
+
+// The particle index of each lane, with the offsets of its fields: index for a scalar field,
+// 3 index for a Vec3 field. With AVX2 and AVX-512 the lanes are filled by gather instructions
+// (plain loads: the values are bit for bit those of scalar loads).
+struct LaneIndex {
+  const uint32_t* index;
+#if defined(__AVX2__)
+  __m256i times1, times3;  // 8 x int32
+#endif
+};
+GRAINLAB_LANES_INLINE LaneIndex lane_index(const uint32_t* index) {
+  LaneIndex r{};
+  r.index = index;
+#if defined(__AVX2__)
+  r.times1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
+  r.times3 = _mm256_add_epi32(_mm256_add_epi32(r.times1, r.times1), r.times1);
+#endif
+  return r;
+}
+// Lane l of the result: base[stride * index[l] + offset] (stride 1 or 3).
+GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int stride,
+                                    int offset) {
+#if defined(__AVX512F__)
+  // (the masked form with all lanes on: the unmasked one warns in GCC 12)
+  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xFF, stride == 3 ? x.times3 : x.times1,
+                                  base + offset, 8);
+#elif defined(__AVX2__)
+  const __m256i index = stride == 3 ? x.times3 : x.times1;
+  const __m256d lo = _mm256_i32gather_pd(base + offset, _mm256_castsi256_si128(index), 8);
+  const __m256d hi = _mm256_i32gather_pd(base + offset, _mm256_extracti128_si256(index, 1), 8);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+  vd r{};
+  for (int l = 0; l < lanes; ++l) r[l] = base[size_t{x.index[l]} * stride + offset];
+  return r;
+#endif
+}
+GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
+  return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
+}
+GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v, int l) {
+  double* out = base + size_t{index} * 3;
+  out[0] = v.x[l];
+  out[1] = v.y[l];
+  out[2] = v.z[l];
+}
+
+GRAINLAB_LANES_INLINE void store_zero3(double* base, size_t index) {
+  double* out = base + size_t{index} * 3;
+  out[0] = out[1] = out[2] = 0.0;
+}
+
+// Touching contacts collected for one pass of the lane arithmetic. The distance test that
+// selects them already gave d = x_j - x_i, |d|^2 and r_i + r_j.
+struct Batch {
+  alignas(64) double dx[lanes], dy[lanes], dz[lanes], dist2[lanes], reach[lanes], ri[lanes],
+      rj[lanes];
+  uint32_t i[lanes], j[lanes], e[lanes];
+  int count = 0;
+};
+
+// Runs the contact law on the batch's contacts and stores each result, except for contacts that
+// may have begun in this step, whose entries go to `deferred`. Returns the batch's largest
+// overlap fraction.
+double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long& deferred_count) {
+  // Unused lanes repeat the last contact: valid numbers, never stored.
+  for (int l = b.count; l < lanes; ++l) {
+    const int last = b.count - 1;
+    b.dx[l] = b.dx[last], b.dy[l] = b.dy[last], b.dz[l] = b.dz[last];
+    b.dist2[l] = b.dist2[last], b.reach[l] = b.reach[last];
+    b.ri[l] = b.ri[last], b.rj[l] = b.rj[last];
+    b.i[l] = b.i[last], b.j[l] = b.j[last], b.e[l] = b.e[last];
+  }
+  vd dx, dy, dz, dist2, reach, ri, rj;
+  __builtin_memcpy(&dx, b.dx, sizeof dx);
+  __builtin_memcpy(&dy, b.dy, sizeof dy);
+  __builtin_memcpy(&dz, b.dz, sizeof dz);
+  __builtin_memcpy(&dist2, b.dist2, sizeof dist2);
+  __builtin_memcpy(&reach, b.reach, sizeof reach);
+  __builtin_memcpy(&ri, b.ri, sizeof ri);
+  __builtin_memcpy(&rj, b.rj, sizeof rj);
+  const double dt = in.time_step, drift = in.drift;
+
+  // pair_forces: normal, overlap and the levers (contact point halfway through the overlap)
+  const vd dist = lane_sqrt(dist2);
+  const vd inverse_dist = 1.0 / dist;
+  const V3 n{inverse_dist * dx, inverse_dist * dy, inverse_dist * dz};
+  const vd overlap = reach - dist;
+  const vd lever_i = ri - 0.5 * overlap, lever_j = rj - 0.5 * overlap;
+
+  // set_step_displacement (half-step velocities, lever_shrink = 1/2): the springs' increment
+  const LaneIndex i = lane_index(b.i), j = lane_index(b.j), e = lane_index(b.e);
+  const V3 v_i = load_lanes3(in.velocity, i), v_j = load_lanes3(in.velocity, j);
+  const V3 w_i = load_lanes3(in.angular_velocity, i), w_j = load_lanes3(in.angular_velocity, j);
+  const V3 dv = v_j - v_i;
+  const vd overlap_increment = -drift * dot(dv, n);
+  const vd shift = 0.5 * 0.5 * overlap_increment;
+  const V3 step_relative = dv - cross((lever_j + shift) * w_j + (lever_i + shift) * w_i, n);
+  const V3 tangential_displacement = drift * (step_relative - dot(step_relative, n) * n);
+
+  // velocity_at_step_end / spin_at_step_end, then set_relative_velocity: the dashpots' rates
+  const double half_dt = 0.5 * dt;
+  const V3 v_end_i =
+      v_i + (half_dt * load_lanes(in.inverse_mass, i, 1, 0)) * load_lanes3(in.force, i);
+  const V3 v_end_j =
+      v_j + (half_dt * load_lanes(in.inverse_mass, j, 1, 0)) * load_lanes3(in.force, j);
+  const V3 w_end_i =
+      w_i + (half_dt * load_lanes(in.inverse_inertia, i, 1, 0)) * load_lanes3(in.torque, i);
+  const V3 w_end_j =
+      w_j + (half_dt * load_lanes(in.inverse_inertia, j, 1, 0)) * load_lanes3(in.torque, j);
+  const V3 relative = v_end_j - v_end_i - cross(lever_j * w_end_j + lever_i * w_end_i, n);
+  const vd normal_speed = dot(relative, n);
+  const vd overlap_rate = -normal_speed;
+  const V3 tangential_velocity = relative - normal_speed * n;
+
+  // pair_forces: may this contact have begun during the step? Then the scalar law takes it.
+  const V3 s = drift * dv;
+  const vd s_n = dot(s, n);
+  const vd curvature = (dot(s, s) - s_n * s_n) / (2.0 * dist);
+  const vmask begun = overlap <= 2.0 * (overlap_increment + curvature);
+  const bool drifted = drift > 0.0;
+
+  // the pair's constants
+  const vd normal_stiffness = load_lanes(in.normal_stiffness, e, 1, 0);
+  const vd normal_damping = load_lanes(in.normal_damping, e, 1, 0);
+  vd rns, rzs, friction;
+  for (int l = 0; l < lanes; ++l) {
+    const PairParams& pair =
+        in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]];
+    rns[l] = pair.rns;
+    rzs[l] = pair.rzs;
+    friction[l] = pair.friction;
+  }
+
+  // normal_force: F_n = k_n U_n + c_n dU_n/dt, clamped at 0
+  const vd f = normal_stiffness * overlap + normal_damping * overlap_rate;
+  const vd normal_force = f > 0.0 ? f : vd{};
+  const vd sliding_stiffness = rns * normal_stiffness, sliding_damping = rzs * normal_damping;
+
+  // keep_in_tangent_plane: turn the spring into the current tangent plane, length kept
+  V3 spring = load_lanes3(in.sliding_spring, e);
+  {
+    const vd length2 = dot(spring, spring);
+    const V3 in_plane = spring - dot(spring, n) * n;
+    const vd in_plane2 = dot(in_plane, in_plane);
+    const V3 scaled = lane_sqrt(length2 / in_plane2) * in_plane;
+    spring = select(length2 == 0.0, spring, select(in_plane2 > 0.0, scaled, in_plane));
+  }
+  // spring_slider: advance, respond, cap at mu F_n (slip shortens the spring)
+  spring = spring + tangential_displacement;
+  V3 tangential = sliding_stiffness * spring + sliding_damping * tangential_velocity;
+  {
+    const vd cap = friction * normal_force;
+    const vd magnitude2 = dot(tangential, tangential);
+    const vmask slip = magnitude2 > cap * cap;
+    const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
+    const V3 slipped_spring =
+        select(sliding_stiffness > 0.0,
+               (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
+    tangential = select(slip, capped, tangential);
+    spring = select(slip, slipped_spring, spring);
+  }
+  // contact_response: force on i, torques about both centres
+  const V3 force_on_i = tangential - normal_force * n;
+  const V3 arm = cross(n, tangential);
+  const V3 torque_on_i = lever_i * arm, torque_on_j = lever_j * arm;
+  const vd fraction = overlap / (rj < ri ? rj : ri);
+
+  // Which lanes to store: the batch's contacts, less those handed back to the scalar law.
+  double max_fraction = 0.0;
+  unsigned store = 0;
+  for (int l = 0; l < b.count; ++l) {
+    if (max_fraction < fraction[l]) max_fraction = fraction[l];
+    if (drifted && begun[l])
+      deferred[deferred_count++] = b.e[l];
+    else
+      store |= 1u << l;
+  }
+#if defined(__AVX512F__)
+  // scatter instructions: one per field instead of a lane extract and a store per lane
+  const __mmask8 m = static_cast<__mmask8>(store);
+  const auto scatter3 = [&](double* base, const V3& v) {
+    _mm512_mask_i32scatter_pd(base, m, e.times3, v.x, 8);
+    _mm512_mask_i32scatter_pd(base + 1, m, e.times3, v.y, 8);
+    _mm512_mask_i32scatter_pd(base + 2, m, e.times3, v.z, 8);
+  };
+  scatter3(in.force_on_first, force_on_i);
+  scatter3(in.torque_on_first, torque_on_i);
+  scatter3(in.torque_on_second, torque_on_j);
+  scatter3(in.sliding_spring, spring);
+  _mm512_mask_i32scatter_pd(in.normal_force, m, e.times1, normal_force, 8);
+#else
+  for (int l = 0; l < b.count; ++l) {
+    if (!(store >> l & 1u)) continue;
+    const uint32_t entry = b.e[l];
+    store_lane3(in.force_on_first, entry, force_on_i, l);
+    store_lane3(in.torque_on_first, entry, torque_on_i, l);
+    store_lane3(in.torque_on_second, entry, torque_on_j, l);
+    store_lane3(in.sliding_spring, entry, spring, l);
+    in.normal_force[entry] = normal_force[l];
+  }
+#endif
+  return max_fraction;
+}
+
+}  // namespace
+
+double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* deferred,
+                 long& deferred_count) {
+  deferred_count = 0;
+  double max_fraction = 0.0;
+  Batch b;
+  // local copies: the compiler cannot tell that the stores below leave `in` unchanged
+  const double* const position = in.position;
+  const double* const radius = in.radius;
+  const uint32_t* const row_start = in.row_start;
+  const uint32_t* const partner = in.partner;
+  double* const force_on_first = in.force_on_first;
+  double* const torque_on_first = in.torque_on_first;
+  double* const torque_on_second = in.torque_on_second;
+  double* const normal_force = in.normal_force;
+  double* const sliding_spring = in.sliding_spring;
+  double scratch[3];
+  for (long i = first_row; i < end_row; ++i) {
+    const double* x_i = position + 3 * i;
+    const double r_i = radius[i];
+    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e) {
+      const uint32_t j = partner[e];
+      const double* x_j = position + size_t{j} * 3;
+      const double r_j = radius[j];
+      const double dx = x_j[0] - x_i[0], dy = x_j[1] - x_i[1], dz = x_j[2] - x_i[2];
+      const double reach = r_i + r_j;
+      const double dist2 = dx * dx + dy * dy + dz * dz;
+      // No branch on touching, which is unpredictable in a packing: an entry apart gets its
+      // zero force written here, a touching one writes the same zeros to a scratch record
+      // instead; every entry is offered to the batch, and only touching ones advance its count.
+      const bool touching = dist2 < reach * reach;
+      const size_t out = touching ? 0 : size_t{e};
+      store_zero3(touching ? scratch : force_on_first, out);
+      store_zero3(touching ? scratch : torque_on_first, out);
+      store_zero3(touching ? scratch : torque_on_second, out);
+      (touching ? scratch : normal_force)[out] = 0.0;
+      store_zero3(touching ? scratch : sliding_spring, out);  // apart: the spring is forgotten
+      const int l = b.count;
+      b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
+      b.ri[l] = r_i, b.rj[l] = r_j;
+      b.i[l] = static_cast<uint32_t>(i), b.j[l] = j, b.e[l] = e;
+      b.count += touching;
+      if (b.count == lanes) {
+        const double m = process_batch(in, b, deferred, deferred_count);
+        if (max_fraction < m) max_fraction = m;
+        b.count = 0;
+      }
+    }
+  }
+  if (b.count > 0) {
+    const double m = process_batch(in, b, deferred, deferred_count);
+    if (max_fraction < m) max_fraction = m;
+  }
+  return max_fraction;
+}
+
+}  // namespace grainlab::GRAINLAB_SIMD_NS

@@ -1,0 +1,83 @@
+// The particle-pair force loop for the reference contact law (sliding friction only: no rolling,
+// twisting or rolling-force pieces), vectorised across contacts: 8 contacts per lane vector,
+// the branches of the law (the clamp of F_n, the turn of the spring into the tangent plane, the
+// slip) as per-lane selects.
+//
+// Each lane does exactly the arithmetic of the scalar loop (core/contact_forces.cpp with
+// contact/contact_law.hpp), in the same order, with IEEE operations only (+ - * / and a
+// correctly rounded sqrt; the kernel is compiled with -ffp-contract=off, so no multiply-add is
+// fused). A contact's result therefore does not depend on which lane or vector it lands in, on
+// the thread count, or on the instruction set: SSE2, AVX2 and AVX-512 give the same bits, and in
+// the portable build the same bits as the scalar loop (tests/core/test_pair_kernel_simd.cpp).
+//
+// Contacts that may have begun during this step (a first-touch correction applies, a few per
+// million contact-steps in a dense packing) are not computed here: their entries are handed
+// back to the caller, which runs the scalar law on them.
+//
+// The kernel is compiled once per instruction set (core/pair_kernel_simd.cpp, see
+// src/core/CMakeLists.txt) and chosen at run time from what the CPU supports; the environment
+// variable GRAINLAB_SIMD = off | sse2 | avx2 | avx512 | auto (default) overrides the choice.
+// This header holds only plain data, so the per-instruction-set objects share no inline code
+// with the rest of the program.
+#pragma once
+
+#include <cstdint>
+
+namespace grainlab {
+
+struct PairParams;
+
+// Raw views of the particle store and the pair contact store (SI units, Vec3 fields as
+// consecutive x, y, z doubles).
+struct SimdPairInput {
+  const double* position;
+  const double* velocity;          // half-step, v(t + dt/2)
+  const double* angular_velocity;  // half-step
+  const double* force;             // of the previous evaluation (end-of-step velocity estimate)
+  const double* torque;
+  const double* radius;
+  const double* inverse_mass;
+  const double* inverse_inertia;
+  const int32_t* material;
+  const PairParams* pair_params;  // material_count x material_count, row-major
+  int32_t material_count;
+  const uint32_t* row_start;
+  const uint32_t* partner;
+  const double* normal_stiffness;  // per entry, N/m
+  const double* normal_damping;    // per entry, N s/m
+  double* sliding_spring;          // per entry, in/out
+  double* force_on_first;          // per entry, out
+  double* torque_on_first;
+  double* torque_on_second;
+  double* normal_force;
+  double time_step;  // s
+  double drift;      // s: time the positions last drifted over (0 on a fresh state)
+};
+
+// Computes the entries of rows [first_row, end_row). Entries left to the caller (first touch in
+// this step) are written to deferred[0 .. deferred_count), which must have room for every entry
+// of those rows. Returns the largest overlap / min(r_i, r_j) among the touching contacts, 0 if
+// none.
+using SimdPairRows = double (*)(const SimdPairInput& in, long first_row, long end_row,
+                                uint32_t* deferred, long& deferred_count);
+
+namespace simd_sse2 {
+double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
+}
+namespace simd_avx2 {
+double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
+}
+namespace simd_avx512 {
+double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
+}
+
+struct SimdPairKernel {
+  SimdPairRows rows = nullptr;  // null: the scalar loop
+  const char* name = "scalar";  // "scalar", "sse2", "avx2" or "avx512"
+};
+
+// The best kernel this CPU runs, or the one GRAINLAB_SIMD names. Throws std::runtime_error
+// naming the variable for an unknown value or an instruction set the CPU lacks.
+SimdPairKernel select_simd_pair_kernel();
+
+}  // namespace grainlab
