@@ -122,7 +122,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 // entries the kernel hands back (contacts that began in this step). Every contact's arithmetic
 // is the same whichever thread or lane computes it.
 double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairTable& table,
-                        PairContacts& c, std::vector<uint32_t>& deferred, double dt, double drift) {
+                        PairContacts& c, const std::vector<uint32_t>& owners,
+                        std::vector<uint32_t>& deferred, double dt, double drift) {
   const long n = static_cast<long>(p.size());
   if (deferred.size() < c.size()) deferred.resize(c.size());
   const SimdPairInput in{&p.position[0].x,
@@ -138,6 +139,7 @@ double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairT
                          table.material_count(),
                          c.row_start.data(),
                          c.partner.data(),
+                         owners.data(),
                          c.normal_stiffness.data(),
                          c.normal_damping.data(),
                          &c.sliding_spring[0].x,
@@ -310,10 +312,19 @@ void Simulation::refresh_contact_constants() {
     }
 }
 
+void Simulation::index_entry_owners() {
+  const PairContacts& c = pairs_;
+  entry_owners_.resize(c.size());
+  for (size_t i = 0; i + 1 < c.row_start.size(); ++i)
+    std::fill(entry_owners_.begin() + c.row_start[i], entry_owners_.begin() + c.row_start[i + 1],
+              static_cast<uint32_t>(i));
+}
+
 void Simulation::compute_pair_forces(double drift) {
   if (simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0) {
-    max_overlap_fraction_ = pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_,
-                                             deferred_pairs_, settings_.time_step, drift);
+    max_overlap_fraction_ =
+        pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_, entry_owners_,
+                         deferred_pairs_, settings_.time_step, drift);
     return;
   }
   max_overlap_fraction_ =

@@ -292,36 +292,46 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
   double* const normal_force = in.normal_force;
   double* const sliding_spring = in.sliding_spring;
   double scratch[3];
-  for (long i = first_row; i < end_row; ++i) {
-    const double* x_i = position + 3 * i;
+  // One flat pass over the entries of the rows (short rows would cost a mispredicted loop exit
+  // each): the entry's first particle comes from the owner array.
+  const uint32_t* const owner = in.owner;
+  const uint32_t first_entry = row_start[first_row], end_entry = row_start[end_row];
+  for (uint32_t e = first_entry; e < end_entry; ++e) {
+    const uint32_t i = owner[e];
+    const double* x_i = position + size_t{i} * 3;
     const double r_i = radius[i];
-    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e) {
-      const uint32_t j = partner[e];
-      const double* x_j = position + size_t{j} * 3;
-      const double r_j = radius[j];
-      const double dx = x_j[0] - x_i[0], dy = x_j[1] - x_i[1], dz = x_j[2] - x_i[2];
-      const double reach = r_i + r_j;
-      const double dist2 = dx * dx + dy * dy + dz * dz;
-      // No branch on touching, which is unpredictable in a packing: an entry apart gets its
-      // zero force written here, a touching one writes the same zeros to a scratch record
-      // instead; every entry is offered to the batch, and only touching ones advance its count.
-      const bool touching = dist2 < reach * reach;
-      const size_t out = touching ? 0 : size_t{e};
-      store_zero3(touching ? scratch : force_on_first, out);
-      store_zero3(touching ? scratch : torque_on_first, out);
-      store_zero3(touching ? scratch : torque_on_second, out);
-      (touching ? scratch : normal_force)[out] = 0.0;
-      store_zero3(touching ? scratch : sliding_spring, out);  // apart: the spring is forgotten
-      const int l = b.count;
-      b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
-      b.ri[l] = r_i, b.rj[l] = r_j;
-      b.i[l] = static_cast<uint32_t>(i), b.j[l] = j, b.e[l] = e;
-      b.count += touching;
-      if (b.count == lanes) {
-        const double m = process_batch(in, b, deferred, deferred_count);
-        if (max_fraction < m) max_fraction = m;
-        b.count = 0;
-      }
+    const uint32_t j = partner[e];
+    const double* x_j = position + size_t{j} * 3;
+    const double r_j = radius[j];
+    const double dx = x_j[0] - x_i[0], dy = x_j[1] - x_i[1], dz = x_j[2] - x_i[2];
+    const double reach = r_i + r_j;
+    const double dist2 = dx * dx + dy * dy + dz * dz;
+    // No branch on touching, which is unpredictable in a packing: an entry apart gets its
+    // zero force written here, a touching one writes the same zeros to a scratch record
+    // instead; every entry is offered to the batch, and only touching ones advance its count.
+    const bool touching = dist2 < reach * reach;
+    // (the destination is chosen by masking addresses: with a select GCC emits a branch)
+    uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
+    asm("" : "+r"(to_scratch));
+    const auto destination = [&](double* field, size_t stride) {
+      const auto apart = reinterpret_cast<uintptr_t>(field + stride * e);
+      return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
+                                       (apart & ~to_scratch));
+    };
+    store_zero3(destination(force_on_first, 3), 0);
+    store_zero3(destination(torque_on_first, 3), 0);
+    store_zero3(destination(torque_on_second, 3), 0);
+    *destination(normal_force, 1) = 0.0;
+    store_zero3(destination(sliding_spring, 3), 0);  // apart: the spring is forgotten
+    const int l = b.count;
+    b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
+    b.ri[l] = r_i, b.rj[l] = r_j;
+    b.i[l] = i, b.j[l] = j, b.e[l] = e;
+    b.count += touching;
+    if (b.count == lanes) {
+      const double m = process_batch(in, b, deferred, deferred_count);
+      if (max_fraction < m) max_fraction = m;
+      b.count = 0;
     }
   }
   if (b.count > 0) {

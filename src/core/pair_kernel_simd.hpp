@@ -43,6 +43,7 @@ struct SimdPairInput {
   int32_t material_count;
   const uint32_t* row_start;
   const uint32_t* partner;
+  const uint32_t* owner;           // per entry: its first particle (the row it lies in)
   const double* normal_stiffness;  // per entry, N/m
   const double* normal_damping;    // per entry, N s/m
   double* sliding_spring;          // per entry, in/out

@@ -24,6 +24,7 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
 void Simulation::rebuild_neighbors() {
   neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
   refresh_contact_constants();
+  index_entry_owners();
 }
 
 void Simulation::step() {
@@ -285,6 +286,7 @@ Simulation::Simulation(StateReader& in, PairTable table)
   max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
   external_forces_ = in.value<bool>();
   check_restored_state();
+  index_entry_owners();
 }
 
 // A restored state is used as it is, so every index it holds is checked first: a damaged or

@@ -109,6 +109,7 @@ class Simulation {
   void compute_pair_forces(double drift);
   void rebuild_neighbors();
   void refresh_contact_constants();
+  void index_entry_owners();  // entry_owners_ for the current list
   void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
@@ -129,9 +130,11 @@ class Simulation {
   double max_speed2_ = 0.0;
   bool external_forces_ = false;  // some particle has a non-zero external force
   // The vectorised pair loop for the reference law (no rolling, twisting or rolling-force piece),
-  // and room for the entries it hands back (first touch in the step), one slot per entry.
+  // the first particle of each entry, and room for the entries the kernel hands back (first
+  // touch in the step), one slot per entry.
   SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
   std::vector<uint32_t> deferred_pairs_;
+  std::vector<uint32_t> entry_owners_;  // per pair entry: its first particle (for the kernel)
   std::vector<StepListener*> listeners_;
 };
 
