@@ -8,24 +8,9 @@
 #include <vector>
 
 #include "contact/material.hpp"
+#include "contact/pair_params.hpp"
 
 namespace grainlab {
-
-struct PairParams {
-  double stiffness_per_radius = 0.0;    // pi E, Pa (k_n = pi E r*, Eq. 4)
-  double damping_ratio = 0.0;           // zeta used (returns e exactly with the clamp)
-  double textbook_damping_ratio = 0.0;  // zeta of Eq. 7, reported only
-  double rns = 0.5, rzs = 0.0;
-  double friction = 0.0;
-  double arf = 0.0;
-  double rolling_damping_ratio = 0.0;  // eta_theta
-  double twisting_friction = 0.0;
-  double rolling_force_stiffness_ratio = 0.0;
-  double rolling_force_friction = 0.0;
-  double youngs_modulus = 0.0;  // E used for this pair, Pa
-  double restitution = 1.0;
-  bool defined = false;
-};
 
 struct ContactPieces {
   bool rolling = false, twisting = false, rolling_force = false;

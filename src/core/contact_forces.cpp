@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "contact/contact_law.hpp"
 #include "core/simulation.hpp"
@@ -321,7 +322,11 @@ void Simulation::index_entry_owners() {
 }
 
 void Simulation::compute_pair_forces(double drift) {
-  if (simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0) {
+  // The kernel's gathers index with 32-bit signed offsets (3 per Vec3): beyond 2^31 / 3 entries
+  // or particles (about 180 million beads) the scalar loop takes over.
+  constexpr size_t kernel_index_limit = size_t{INT32_MAX} / 3;
+  if (simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0 &&
+      pairs_.size() < kernel_index_limit && particles_.size() < kernel_index_limit) {
     max_overlap_fraction_ =
         pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_, entry_owners_,
                          deferred_pairs_, settings_.time_step, drift);

@@ -11,7 +11,7 @@
 
 #include <immintrin.h>
 
-#include "contact/pair_table.hpp"
+#include "contact/pair_params.hpp"
 
 #ifndef GRAINLAB_SIMD_NS
 #error "GRAINLAB_SIMD_NS must name the instruction set's namespace"
@@ -309,7 +309,7 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
     // No branch on touching, which is unpredictable in a packing: an entry apart gets its
     // zero force written here, a touching one writes the same zeros to a scratch record
     // instead; every entry is offered to the batch, and only touching ones advance its count.
-    const bool touching = dist2 < reach * reach;
+    const bool touching = !(dist2 >= reach * reach);  // as the scalar test (NaN: touching)
     // (the destination is chosen by masking addresses: with a select GCC emits a branch)
     uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
     asm("" : "+r"(to_scratch));

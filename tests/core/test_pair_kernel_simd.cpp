@@ -51,6 +51,8 @@ struct KernelChoice {
 struct PileResult {
   ParticleStore particles;
   std::string kernel;
+  std::vector<Vec3> springs;          // per pair entry
+  std::vector<double> normal_forces;  // per pair entry
   long touching = 0;
   long rebuilds = 0;
 };
@@ -89,6 +91,8 @@ PileResult run_pile(const char* kernel, int threads, long steps) {
   }
   r.rebuilds = sim.rebuild_count();
   r.particles = sim.particles();
+  r.springs = sim.pair_contacts().sliding_spring;
+  r.normal_forces = sim.pair_contacts().normal_force;
   omp_set_num_threads(omp_get_num_procs());
   return r;
 }
@@ -104,6 +108,11 @@ void expect_identical(const PileResult& a, const PileResult& b) {
                            bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.force.data(), b.particles.force.data(), bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.torque.data(), b.particles.torque.data(), bytes));
+  // the contact histories and normal forces of the last step, entry by entry
+  ASSERT_EQ(a.springs.size(), b.springs.size());
+  EXPECT_EQ(0, std::memcmp(a.springs.data(), b.springs.data(), a.springs.size() * sizeof(Vec3)));
+  EXPECT_EQ(0, std::memcmp(a.normal_forces.data(), b.normal_forces.data(),
+                           a.normal_forces.size() * sizeof(double)));
 }
 
 bool cpu_has(const char* isa) {
