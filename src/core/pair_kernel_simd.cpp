@@ -2,7 +2,8 @@
 // three times, with GRAINLAB_SIMD_NS = simd_sse2, simd_avx2 or simd_avx512 and the matching
 // -m flags, always with -ffp-contract=off (src/core/CMakeLists.txt). Everything here has
 // internal linkage or is a compiler builtin: no inline function compiled for one instruction set
-// can be picked by the linker for code that runs on another.
+// can be picked by the linker for code that runs on another (ctest
+// core.pair_kernel_objects_define_only_pair_rows checks the objects with nm).
 //
 // The lane arithmetic mirrors the scalar law statement by statement; the comments name the
 // scalar function each block reproduces. Change both together: the bit-identity test

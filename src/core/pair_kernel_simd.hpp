@@ -10,9 +10,10 @@
 // the thread count, or on the instruction set: SSE2, AVX2 and AVX-512 give the same bits, and in
 // the portable build the same bits as the scalar loop (tests/core/test_pair_kernel_simd.cpp).
 //
-// Contacts that may have begun during this step (a first-touch correction applies, a few per
-// million contact-steps in a dense packing) are not computed here: their entries are handed
-// back to the caller, which runs the scalar law on them.
+// Contacts that may have begun during this step (the first-touch correction may apply; rare in
+// a packing at rest) are not computed here: their entries are handed back to the caller, which
+// runs the scalar law on them. The gathers use 32-bit offsets: the caller keeps the scalar loop
+// for more than 2^31 / 3 entries or particles.
 //
 // The kernel is compiled once per instruction set (core/pair_kernel_simd.cpp, see
 // src/core/CMakeLists.txt) and chosen at run time from what the CPU supports; the environment
