@@ -162,8 +162,7 @@ double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairT
     double m = kernel(in, first, end, my_deferred, deferred_count);
     for (long k = 0; k < deferred_count; ++k) {
       const uint32_t e = my_deferred[k];
-      const size_t i =
-          std::upper_bound(&c.row_start[first], &c.row_start[end] + 1, e) - c.row_start.data() - 1;
+      const uint32_t i = owners[e];
       const PairParams* row_params = &table(0, 0) + p.material[i] * materials;
       m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i],
                                                       p.radius[i], e, dt, drift));
@@ -313,8 +312,20 @@ void Simulation::refresh_contact_constants() {
     }
 }
 
+bool Simulation::uses_pair_kernel() const {
+  // The kernel's gathers index with 32-bit signed offsets (3 per Vec3): beyond 2^31 / 3 entries
+  // or particles (about 180 million beads) the scalar loop takes over.
+  constexpr size_t kernel_index_limit = size_t{INT32_MAX} / 3;
+  return simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0 &&
+         pairs_.size() < kernel_index_limit && particles_.size() < kernel_index_limit;
+}
+
 void Simulation::index_entry_owners() {
   const PairContacts& c = pairs_;
+  if (!uses_pair_kernel()) {  // only the kernel reads them
+    entry_owners_.clear();
+    return;
+  }
   entry_owners_.resize(c.size());
   for (size_t i = 0; i + 1 < c.row_start.size(); ++i)
     std::fill(entry_owners_.begin() + c.row_start[i], entry_owners_.begin() + c.row_start[i + 1],
@@ -322,11 +333,7 @@ void Simulation::index_entry_owners() {
 }
 
 void Simulation::compute_pair_forces(double drift) {
-  // The kernel's gathers index with 32-bit signed offsets (3 per Vec3): beyond 2^31 / 3 entries
-  // or particles (about 180 million beads) the scalar loop takes over.
-  constexpr size_t kernel_index_limit = size_t{INT32_MAX} / 3;
-  if (simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0 &&
-      pairs_.size() < kernel_index_limit && particles_.size() < kernel_index_limit) {
+  if (uses_pair_kernel()) {
     max_overlap_fraction_ =
         pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_, entry_owners_,
                          deferred_pairs_, settings_.time_step, drift);

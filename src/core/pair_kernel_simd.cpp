@@ -97,9 +97,13 @@ GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int 
   return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xFF, stride == 3 ? x.times3 : x.times1,
                                   base + offset, 8);
 #elif defined(__AVX2__)
+  // (the masked form with all lanes on, as for AVX-512)
   const __m256i index = stride == 3 ? x.times3 : x.times1;
-  const __m256d lo = _mm256_i32gather_pd(base + offset, _mm256_castsi256_si128(index), 8);
-  const __m256d hi = _mm256_i32gather_pd(base + offset, _mm256_extracti128_si256(index, 1), 8);
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d lo = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
+                                              _mm256_castsi256_si128(index), all, 8);
+  const __m256d hi = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
+                                              _mm256_extracti128_si256(index, 1), all, 8);
   return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
   vd r{};
@@ -117,8 +121,7 @@ GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v
   out[2] = v.z[l];
 }
 
-GRAINLAB_LANES_INLINE void store_zero3(double* base, size_t index) {
-  double* out = base + size_t{index} * 3;
+GRAINLAB_LANES_INLINE void store_zero3(double* out) {
   out[0] = out[1] = out[2] = 0.0;
 }
 
@@ -153,7 +156,7 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   __builtin_memcpy(&rj, b.rj, sizeof rj);
   const double dt = in.time_step, drift = in.drift;
 
-  // pair_forces: normal, overlap and the levers (contact point halfway through the overlap)
+  // pair_entry: normal, overlap and the levers (contact point halfway through the overlap)
   const vd dist = lane_sqrt(dist2);
   const vd inverse_dist = 1.0 / dist;
   const V3 n{inverse_dist * dx, inverse_dist * dy, inverse_dist * dz};
@@ -185,7 +188,7 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const vd overlap_rate = -normal_speed;
   const V3 tangential_velocity = relative - normal_speed * n;
 
-  // pair_forces: may this contact have begun during the step? Then the scalar law takes it.
+  // pair_entry: may this contact have begun during the step? Then the scalar law takes it.
   const V3 s = drift * dv;
   const vd s_n = dot(s, n);
   const vd curvature = (dot(s, s) - s_n * s_n) / (2.0 * dist);
@@ -319,11 +322,11 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
       return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
                                        (apart & ~to_scratch));
     };
-    store_zero3(destination(force_on_first, 3), 0);
-    store_zero3(destination(torque_on_first, 3), 0);
-    store_zero3(destination(torque_on_second, 3), 0);
+    store_zero3(destination(force_on_first, 3));
+    store_zero3(destination(torque_on_first, 3));
+    store_zero3(destination(torque_on_second, 3));
     *destination(normal_force, 1) = 0.0;
-    store_zero3(destination(sliding_spring, 3), 0);  // apart: the spring is forgotten
+    store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
     const int l = b.count;
     b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
     b.ri[l] = r_i, b.rj[l] = r_j;

@@ -109,7 +109,10 @@ class Simulation {
   void compute_pair_forces(double drift);
   void rebuild_neighbors();
   void refresh_contact_constants();
-  void index_entry_owners();  // entry_owners_ for the current list
+  // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
+  // and the list's size; fixed between rebuilds).
+  bool uses_pair_kernel() const;
+  void index_entry_owners();  // entry_owners_ for the current list, when the kernel reads them
   void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
