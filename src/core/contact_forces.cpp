@@ -119,12 +119,15 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 }
 
 // The reference law through the vectorised kernel (core/pair_kernel_simd.hpp). Each thread
-// takes a contiguous block of rows, as schedule(static) would, and runs the scalar law on the
-// entries the kernel hands back (contacts that began in this step). Every contact's arithmetic
-// is the same whichever thread or lane computes it.
-double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairTable& table,
-                        PairContacts& c, const std::vector<uint32_t>& owners,
-                        std::vector<uint32_t>& deferred, double dt, double drift) {
+// takes a contiguous block of particles, as schedule(static) would: it writes their records,
+// and once every thread has (the rows read their partners' records), computes their rows and
+// runs the scalar law on the entries the kernel hands back (contacts that began in this step).
+// Every contact's arithmetic is the same whichever thread or lane computes it.
+double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
+                        const PairTable& table, PairContacts& c,
+                        const std::vector<uint32_t>& owners, std::vector<double>& records,
+                        std::vector<uint32_t>& deferred, long& handed_back, double dt,
+                        double drift) {
   const long n = static_cast<long>(p.size());
   if (deferred.size() < c.size()) deferred.resize(c.size());
   const SimdPairInput in{&p.position[0].x,
@@ -136,6 +139,7 @@ double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairT
                          p.inverse_mass.data(),
                          p.inverse_inertia.data(),
                          p.material.data(),
+                         records.data(),
                          &table(0, 0),
                          table.material_count(),
                          c.row_start.data(),
@@ -152,14 +156,18 @@ double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairT
                          drift};
   const int materials = table.material_count();
   double max_fraction = 0.0;
-#pragma omp parallel reduction(max : max_fraction) if (n > parallel_threshold)
+  long deferred_total = 0;
+#pragma omp parallel reduction(max : max_fraction) reduction(+ : deferred_total) \
+    if (n > parallel_threshold)
   {
     const long threads = omp_get_num_threads(), thread = omp_get_thread_num();
     const long block = (n + threads - 1) / threads;
     const long first = std::min(n, thread * block), end = std::min(n, first + block);
     uint32_t* my_deferred = deferred.data() + c.row_start[first];
     long deferred_count = 0;
-    double m = kernel(in, first, end, my_deferred, deferred_count);
+    kernel.records(in, first, end);
+#pragma omp barrier
+    double m = kernel.rows(in, first, end, my_deferred, deferred_count);
     for (long k = 0; k < deferred_count; ++k) {
       const uint32_t e = my_deferred[k];
       const uint32_t i = owners[e];
@@ -168,7 +176,9 @@ double pair_forces_simd(SimdPairRows kernel, const ParticleStore& p, const PairT
                                                       p.radius[i], e, dt, drift));
     }
     max_fraction = std::max(max_fraction, m);
+    deferred_total += deferred_count;
   }
+  handed_back = deferred_total;
   return max_fraction;
 }
 
@@ -324,8 +334,10 @@ void Simulation::index_entry_owners() {
   const PairContacts& c = pairs_;
   if (!uses_pair_kernel()) {  // only the kernel reads them
     entry_owners_.clear();
+    particle_records_.clear();
     return;
   }
+  particle_records_.resize(particles_.size() * particle_record_size);
   entry_owners_.resize(c.size());
   for (size_t i = 0; i + 1 < c.row_start.size(); ++i)
     std::fill(entry_owners_.begin() + c.row_start[i], entry_owners_.begin() + c.row_start[i + 1],
@@ -334,11 +346,12 @@ void Simulation::index_entry_owners() {
 
 void Simulation::compute_pair_forces(double drift) {
   if (uses_pair_kernel()) {
-    max_overlap_fraction_ =
-        pair_forces_simd(simd_pair_kernel_.rows, particles_, table_, pairs_, entry_owners_,
-                         deferred_pairs_, settings_.time_step, drift);
+    max_overlap_fraction_ = pair_forces_simd(
+        simd_pair_kernel_, particles_, table_, pairs_, entry_owners_, particle_records_,
+        deferred_pairs_, pairs_handed_to_scalar_law_, settings_.time_step, drift);
     return;
   }
+  pairs_handed_to_scalar_law_ = 0;
   max_overlap_fraction_ =
       dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift);
 }

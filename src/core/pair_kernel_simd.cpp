@@ -3,7 +3,7 @@
 // -m flags, always with -ffp-contract=off (src/core/CMakeLists.txt). Everything here has
 // internal linkage or is a compiler builtin: no inline function compiled for one instruction set
 // can be picked by the linker for code that runs on another (ctest
-// core.pair_kernel_objects_define_only_pair_rows checks the objects with nm).
+// core.pair_kernel_objects_define_only_their_entry_points checks the objects with nm).
 //
 // The lane arithmetic mirrors the scalar law statement by statement; the comments name the
 // scalar function each block reproduces. Change both together: the bit-identity test
@@ -121,6 +121,67 @@ GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v
   out[2] = v.z[l];
 }
 
+// The velocities of each lane's particle from its record (particle_records): per lane a load of
+// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. The
+// two halves are loaded where they are first needed, which keeps fewer vectors live.
+using vd4 = double __attribute__((vector_size(32)));
+struct RecordHead {  // values 0..7
+  V3 velocity, spin;
+  vd velocity_at_end_x, velocity_at_end_y;
+};
+GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const uint32_t* index) {
+  vd r[lanes];  // r[l]: values 0..7 of lane l
+  for (int l = 0; l < lanes; ++l)
+    __builtin_memcpy(&r[l], record + size_t{index[l]} * particle_record_size, sizeof r[l]);
+  // 8 x 8 transpose: pairs of rows, then quads, then halves.
+  vd a[lanes], b[lanes];
+  for (int k = 0; k < 4; ++k) {
+    a[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+    a[2 * k + 1] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+  }
+  for (int h = 0; h < 2; ++h)            // rows 0-3, rows 4-7
+    for (int odd = 0; odd < 2; ++odd) {  // values 0 2 4 6, values 1 3 5 7
+      const vd& x = a[4 * h + odd];
+      const vd& y = a[4 * h + 2 + odd];
+      b[4 * h + 2 * odd] = __builtin_shufflevector(x, y, 0, 1, 8, 9, 4, 5, 12, 13);
+      b[4 * h + 2 * odd + 1] = __builtin_shufflevector(x, y, 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  // b[2 odd + s] (rows 0-3) and b[4 + 2 odd + s] (rows 4-7) hold values v and v + 4 with
+  // v = odd + 2 s
+  vd value[8];
+  for (int odd = 0; odd < 2; ++odd)
+    for (int s = 0; s < 2; ++s) {
+      const vd& lo = b[2 * odd + s];
+      const vd& hi = b[4 + 2 * odd + s];
+      const int v = odd + 2 * s;
+      value[v] = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
+      value[v + 4] = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    }
+  return {{value[0], value[1], value[2]}, {value[3], value[4], value[5]}, value[6], value[7]};
+}
+struct RecordTail {  // values 8..11
+  vd velocity_at_end_z;
+  V3 spin_at_end;
+};
+GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const uint32_t* index) {
+  vd4 q[lanes];  // q[l]: values 8..11 of lane l
+  for (int l = 0; l < lanes; ++l)
+    __builtin_memcpy(&q[l], record + size_t{index[l]} * particle_record_size + 8, sizeof q[l]);
+  // 4 x 8 transpose: lanes l and l + 4 side by side, then pairs and quads as above.
+  vd c[4], d[4], value[4];
+  for (int k = 0; k < 4; ++k)
+    c[k] = __builtin_shufflevector(q[k], q[k + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+  d[0] = __builtin_shufflevector(c[0], c[1], 0, 8, 2, 10, 4, 12, 6, 14);
+  d[1] = __builtin_shufflevector(c[0], c[1], 1, 9, 3, 11, 5, 13, 7, 15);
+  d[2] = __builtin_shufflevector(c[2], c[3], 0, 8, 2, 10, 4, 12, 6, 14);
+  d[3] = __builtin_shufflevector(c[2], c[3], 1, 9, 3, 11, 5, 13, 7, 15);
+  value[0] = __builtin_shufflevector(d[0], d[2], 0, 1, 8, 9, 4, 5, 12, 13);
+  value[2] = __builtin_shufflevector(d[0], d[2], 2, 3, 10, 11, 6, 7, 14, 15);
+  value[1] = __builtin_shufflevector(d[1], d[3], 0, 1, 8, 9, 4, 5, 12, 13);
+  value[3] = __builtin_shufflevector(d[1], d[3], 2, 3, 10, 11, 6, 7, 14, 15);
+  return {value[0], {value[1], value[2], value[3]}};
+}
+
 GRAINLAB_LANES_INLINE void store_zero3(double* out) {
   out[0] = out[1] = out[2] = 0.0;
 }
@@ -154,7 +215,7 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   __builtin_memcpy(&reach, b.reach, sizeof reach);
   __builtin_memcpy(&ri, b.ri, sizeof ri);
   __builtin_memcpy(&rj, b.rj, sizeof rj);
-  const double dt = in.time_step, drift = in.drift;
+  const double drift = in.drift;
 
   // pair_entry: normal, overlap and the levers (contact point halfway through the overlap)
   const vd dist = lane_sqrt(dist2);
@@ -164,25 +225,22 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const vd lever_i = ri - 0.5 * overlap, lever_j = rj - 0.5 * overlap;
 
   // set_step_displacement (half-step velocities, lever_shrink = 1/2): the springs' increment
-  const LaneIndex i = lane_index(b.i), j = lane_index(b.j), e = lane_index(b.e);
-  const V3 v_i = load_lanes3(in.velocity, i), v_j = load_lanes3(in.velocity, j);
-  const V3 w_i = load_lanes3(in.angular_velocity, i), w_j = load_lanes3(in.angular_velocity, j);
+  const LaneIndex e = lane_index(b.e);
+  const RecordHead head_i = load_record_head(in.particle_record, b.i);
+  const RecordHead head_j = load_record_head(in.particle_record, b.j);
+  const V3 &v_i = head_i.velocity, &v_j = head_j.velocity, &w_i = head_i.spin, &w_j = head_j.spin;
   const V3 dv = v_j - v_i;
   const vd overlap_increment = -drift * dot(dv, n);
   const vd shift = 0.5 * 0.5 * overlap_increment;
   const V3 step_relative = dv - cross((lever_j + shift) * w_j + (lever_i + shift) * w_i, n);
   const V3 tangential_displacement = drift * (step_relative - dot(step_relative, n) * n);
 
-  // velocity_at_step_end / spin_at_step_end, then set_relative_velocity: the dashpots' rates
-  const double half_dt = 0.5 * dt;
-  const V3 v_end_i =
-      v_i + (half_dt * load_lanes(in.inverse_mass, i, 1, 0)) * load_lanes3(in.force, i);
-  const V3 v_end_j =
-      v_j + (half_dt * load_lanes(in.inverse_mass, j, 1, 0)) * load_lanes3(in.force, j);
-  const V3 w_end_i =
-      w_i + (half_dt * load_lanes(in.inverse_inertia, i, 1, 0)) * load_lanes3(in.torque, i);
-  const V3 w_end_j =
-      w_j + (half_dt * load_lanes(in.inverse_inertia, j, 1, 0)) * load_lanes3(in.torque, j);
+  // set_relative_velocity with the end-of-step estimates (particle_records): the dashpots' rates
+  const RecordTail tail_i = load_record_tail(in.particle_record, b.i);
+  const RecordTail tail_j = load_record_tail(in.particle_record, b.j);
+  const V3 v_end_i{head_i.velocity_at_end_x, head_i.velocity_at_end_y, tail_i.velocity_at_end_z};
+  const V3 v_end_j{head_j.velocity_at_end_x, head_j.velocity_at_end_y, tail_j.velocity_at_end_z};
+  const V3 &w_end_i = tail_i.spin_at_end, &w_end_j = tail_j.spin_at_end;
   const V3 relative = v_end_j - v_end_i - cross(lever_j * w_end_j + lever_i * w_end_i, n);
   const vd normal_speed = dot(relative, n);
   const vd overlap_rate = -normal_speed;
@@ -279,6 +337,24 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
 }
 
 }  // namespace
+
+void particle_records(const SimdPairInput& in, long first, long end) {
+  // velocity_at_step_end / spin_at_step_end: v(t + dt/2) + dt/2 F(t)/m, the same operations
+  const double half_dt = 0.5 * in.time_step;
+  for (long i = first; i < end; ++i) {
+    const double* v = in.velocity + 3 * i;
+    const double* w = in.angular_velocity + 3 * i;
+    const double* f = in.force + 3 * i;
+    const double* t = in.torque + 3 * i;
+    const double kick = half_dt * in.inverse_mass[i], spin_kick = half_dt * in.inverse_inertia[i];
+    double* r = in.particle_record + particle_record_size * i;
+    r[0] = v[0], r[1] = v[1], r[2] = v[2];
+    r[3] = w[0], r[4] = w[1], r[5] = w[2];
+    r[6] = v[0] + kick * f[0], r[7] = v[1] + kick * f[1], r[8] = v[2] + kick * f[2];
+    r[9] = w[0] + spin_kick * t[0], r[10] = w[1] + spin_kick * t[1],
+    r[11] = w[2] + spin_kick * t[2];
+  }
+}
 
 double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* deferred,
                  long& deferred_count) {

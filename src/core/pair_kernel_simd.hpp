@@ -28,6 +28,13 @@ namespace grainlab {
 
 struct PairParams;
 
+// Per particle, the velocities the pair law reads, side by side (particle_record_size doubles,
+// written by the kernel's `records` stage at each evaluation): the half-step v and omega, then
+// the end-of-step estimates v + dt/2 F/m and omega + dt/2 T/I. A lane then loads a particle's
+// twelve values with two plain loads, where a gather per value (28 per contact) cost more than
+// the whole law.
+constexpr int particle_record_size = 12;
+
 // Raw views of the particle store and the pair contact store (SI units, Vec3 fields as
 // consecutive x, y, z doubles).
 struct SimdPairInput {
@@ -40,6 +47,7 @@ struct SimdPairInput {
   const double* inverse_mass;
   const double* inverse_inertia;
   const int32_t* material;
+  double* particle_record;  // particle_record_size per particle: written by records, read by rows
   const PairParams* pair_params;  // material_count x material_count, row-major
   int32_t material_count;
   const uint32_t* row_start;
@@ -60,21 +68,29 @@ struct SimdPairInput {
 // this step) are written to deferred[0 .. deferred_count), which must have room for every entry
 // of those rows. Returns the largest overlap / min(r_i, r_j) among the touching contacts, 0 if
 // none.
+// Reads particle_record of every particle the entries name: all particles' records must have been
+// written (by particle_records) before any thread runs its rows.
 using SimdPairRows = double (*)(const SimdPairInput& in, long first_row, long end_row,
                                 uint32_t* deferred, long& deferred_count);
+// Writes the particle records of particles [first, end) from the velocities, forces and torques.
+using SimdParticleRecords = void (*)(const SimdPairInput& in, long first, long end);
 
 namespace simd_sse2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
-}
+void particle_records(const SimdPairInput&, long, long);
+}  // namespace simd_sse2
 namespace simd_avx2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
-}
+void particle_records(const SimdPairInput&, long, long);
+}  // namespace simd_avx2
 namespace simd_avx512 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
-}
+void particle_records(const SimdPairInput&, long, long);
+}  // namespace simd_avx512
 
 struct SimdPairKernel {
   SimdPairRows rows = nullptr;  // null: the scalar loop
+  SimdParticleRecords records = nullptr;
   const char* name = "scalar";  // "scalar", "sse2", "avx2" or "avx512"
 };
 

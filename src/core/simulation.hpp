@@ -99,6 +99,9 @@ class Simulation {
   double max_overlap_fraction() const { return max_overlap_fraction_; }
   // Which pair force loop runs: "scalar", "sse2", "avx2" or "avx512" (core/pair_kernel_simd.hpp).
   const char* pair_kernel_name() const { return simd_pair_kernel_.name; }
+  // Pair entries the kernel handed back to the scalar law in the last force evaluation (contacts
+  // that may have begun within the step); 0 when the scalar loop ran.
+  long pairs_handed_to_scalar_law() const { return pairs_handed_to_scalar_law_; }
 
  private:
   void kick_and_drift();
@@ -112,7 +115,8 @@ class Simulation {
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;
-  void index_entry_owners();  // entry_owners_ for the current list, when the kernel reads them
+  // entry_owners_ and room for particle_records_, when the kernel runs
+  void index_entry_owners();
   void compute_wall_forces(double drift);
   void gather();
   void check_health() const;
@@ -137,7 +141,9 @@ class Simulation {
   // touch in the step), one slot per entry.
   SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
   std::vector<uint32_t> deferred_pairs_;
-  std::vector<uint32_t> entry_owners_;  // per pair entry: its first particle (for the kernel)
+  std::vector<uint32_t> entry_owners_;    // per pair entry: its first particle (for the kernel)
+  std::vector<double> particle_records_;  // the kernel's per-particle velocity records
+  long pairs_handed_to_scalar_law_ = 0;
   std::vector<StepListener*> listeners_;
 };
 

@@ -3,9 +3,9 @@
 // instruction set this CPU has must end in bit-identical states. The pile mixes two bead
 // materials (different friction, restitution and tangential damping), sticking and sliding
 // contacts, contacts beginning inside a step (handed back to the scalar law), separations and
-// neighbour rebuilds. In a build that lets the compiler fuse multiply-adds (-march=native with
-// FMA) the scalar loop may round differently from the kernel, which never fuses; there only the
-// instruction sets are compared with each other.
+// neighbour rebuilds; the test checks that the first-touch path ran. In a build that lets the
+// compiler fuse multiply-adds (-march=native with FMA) the scalar loop may round differently from
+// the kernel, which never fuses; there only the instruction sets are compared with each other.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -55,6 +55,7 @@ struct PileResult {
   std::vector<double> normal_forces;  // per pair entry
   long touching = 0;
   long rebuilds = 0;
+  long handed_back = 0;  // entries the kernel handed to the scalar law (first touch in a step)
 };
 
 PileResult run_pile(const char* kernel, int threads, long steps) {
@@ -88,6 +89,7 @@ PileResult run_pile(const char* kernel, int threads, long steps) {
   for (long s = 0; s < steps; ++s) {
     sim.step();
     r.touching += sim.touching_pair_count();
+    r.handed_back += sim.pairs_handed_to_scalar_law();
   }
   r.rebuilds = sim.rebuild_count();
   r.particles = sim.particles();
@@ -132,8 +134,13 @@ TEST(PairKernelSimd, EveryInstructionSetMatchesTheScalarLaw) {
   // The run must exercise what the kernel has to get right.
   EXPECT_GT(scalar.touching, 1000L * pile_steps) << "too few contacts";
   EXPECT_GE(scalar.rebuilds, 1);
+  EXPECT_EQ(scalar.handed_back, 0);
   const PileResult sse2 = run_pile("sse2", 1, pile_steps);
   EXPECT_EQ(sse2.kernel, "sse2");
+  // Contacts beginning inside a step went through the scalar law's first-touch correction, and
+  // they are the exception: the kernel computed the rest.
+  EXPECT_GT(sse2.handed_back, 100) << "the first-touch path of the kernel was not exercised";
+  EXPECT_LT(sse2.handed_back, sse2.touching / 100);
 #ifndef __FMA__
   expect_identical(scalar, sse2);
 #endif
@@ -141,6 +148,7 @@ TEST(PairKernelSimd, EveryInstructionSetMatchesTheScalarLaw) {
     if (!cpu_has(isa)) continue;
     const PileResult r = run_pile(isa, 1, pile_steps);
     EXPECT_EQ(r.kernel, isa);
+    EXPECT_EQ(r.handed_back, sse2.handed_back);
     expect_identical(sse2, r);
   }
 }
@@ -151,6 +159,7 @@ TEST(PairKernelSimd, OneAndTwoThreadsGiveBitIdenticalStates) {
   const PileResult one = run_pile("auto", 1, pile_steps);
   const PileResult two = run_pile("auto", 2, pile_steps);
   EXPECT_NE(one.kernel, "scalar");
+  EXPECT_EQ(one.handed_back, two.handed_back);
   expect_identical(one, two);
 }
 
