@@ -323,8 +323,9 @@ void Simulation::refresh_contact_constants() {
 }
 
 bool Simulation::uses_pair_kernel() const {
-  // The kernel's gathers index with 32-bit signed offsets (3 per Vec3): beyond 2^31 / 3 entries
-  // or particles (about 180 million beads) the scalar loop takes over.
+  // The kernel's gathers and scatters of entry data index with 32-bit signed offsets (3 per
+  // Vec3): beyond 2^31 / 3 entries (and, conservatively, particles: about 180 million beads)
+  // the scalar loop takes over.
   constexpr size_t kernel_index_limit = size_t{INT32_MAX} / 3;
   return simd_pair_kernel_.rows && pieces_ == ContactPieces{} && pairs_.size() > 0 &&
          pairs_.size() < kernel_index_limit && particles_.size() < kernel_index_limit;

@@ -71,7 +71,7 @@ GRAINLAB_LANES_INLINE V3 select(vmask m, const V3& a, const V3& b) {
   return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
 }
 
-// The particle index of each lane, with the offsets of its fields: index for a scalar field,
+// The entry index of each lane, with the offsets of its fields: index for a scalar field,
 // 3 index for a Vec3 field. With AVX2 and AVX-512 the lanes are filled by gather instructions
 // (plain loads: the values are bit for bit those of scalar loads).
 struct LaneIndex {

@@ -12,8 +12,8 @@
 //
 // Contacts that may have begun during this step (the first-touch correction may apply; rare in
 // a packing at rest) are not computed here: their entries are handed back to the caller, which
-// runs the scalar law on them. The gathers use 32-bit offsets: the caller keeps the scalar loop
-// for more than 2^31 / 3 entries or particles.
+// runs the scalar law on them. The gathers and scatters of entry data use 32-bit offsets: the
+// caller keeps the scalar loop for more than 2^31 / 3 entries (and, conservatively, particles).
 //
 // The kernel is compiled once per instruction set (core/pair_kernel_simd.cpp, see
 // src/core/CMakeLists.txt) and chosen at run time from what the CPU supports; the environment
@@ -31,8 +31,9 @@ struct PairParams;
 // Per particle, the velocities the pair law reads, side by side (particle_record_size doubles,
 // written by the kernel's `records` stage at each evaluation): the half-step v and omega, then
 // the end-of-step estimates v + dt/2 F/m and omega + dt/2 T/I. A lane then loads a particle's
-// twelve values with two plain loads, where a gather per value (28 per contact) cost more than
-// the whole law.
+// twelve values with two plain loads, where gathering them (with AVX-512 one gather instruction
+// per value, 28 per batch of 8 contacts) had been the kernel's largest cost
+// (docs/performance.md sec. 12).
 constexpr int particle_record_size = 12;
 
 // Raw views of the particle store and the pair contact store (SI units, Vec3 fields as
