@@ -121,7 +121,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 // The reference law through the vectorised kernel (core/pair_kernel_simd.hpp). Each thread
 // takes a contiguous block of particles, as schedule(static) would: it writes their records,
 // and once every thread has (the rows read their partners' records), computes their rows and
-// runs the scalar law on the entries the kernel hands back (contacts that began in this step).
+// runs the scalar law on the entries the kernel hands back (contacts that may have begun in this
+// step).
 // Every contact's arithmetic is the same whichever thread or lane computes it.
 double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                         const PairTable& table, PairContacts& c,
