@@ -340,10 +340,7 @@ void Simulation::index_entry_owners() {
     return;
   }
   particle_records_.resize(particles_.size() * particle_record_size);
-  entry_owners_.resize(c.size());
-  for (size_t i = 0; i + 1 < c.row_start.size(); ++i)
-    std::fill(entry_owners_.begin() + c.row_start[i], entry_owners_.begin() + c.row_start[i + 1],
-              static_cast<uint32_t>(i));
+  entry_owners_ = row_of_each_entry(c.row_start);
 }
 
 void Simulation::compute_pair_forces(double drift) {

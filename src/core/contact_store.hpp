@@ -16,6 +16,14 @@
 
 namespace grainlab {
 
+// For a CSR row index (row_start, N + 1 values): the row each entry lies in, i.e. its particle.
+inline std::vector<uint32_t> row_of_each_entry(const std::vector<uint32_t>& row_start) {
+  std::vector<uint32_t> row(row_start.empty() ? 0 : row_start.back());
+  for (size_t i = 0; i + 1 < row_start.size(); ++i)
+    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e) row[e] = static_cast<uint32_t>(i);
+  return row;
+}
+
 struct PairContacts {
   std::vector<uint32_t> row_start;  // N + 1
   std::vector<uint32_t> partner;    // per entry: second particle

@@ -225,16 +225,10 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   build_wall_candidates(p, walls, wall_contacts);
 
   // Entry -> first particle, for the key of each new pair entry.
-  std::vector<uint32_t> first(pairs.size());
-  for (size_t i = 0; i < p.size(); ++i)
-    for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
-      first[e] = static_cast<uint32_t>(i);
+  const std::vector<uint32_t> first = row_of_each_entry(pairs.row_start);
   carry_history(old_pairs, old_pair_keys, pairs, pieces,
                 [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
-  std::vector<uint32_t> owner(wall_contacts.size());
-  for (size_t i = 0; i < p.size(); ++i)
-    for (uint32_t e = wall_contacts.row_start[i]; e < wall_contacts.row_start[i + 1]; ++e)
-      owner[e] = static_cast<uint32_t>(i);
+  const std::vector<uint32_t> owner = row_of_each_entry(wall_contacts.row_start);
   carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
     return (static_cast<uint64_t>(p.id[owner[e]]) << 16) | wall_contacts.wall[e];
   });
