@@ -34,9 +34,6 @@ struct PairContacts {
   std::vector<Vec3> rolling_angle;
   std::vector<double> twisting_angle;
   std::vector<Vec3> rolling_force_displacement;
-  // constants of each entry, set when the list is built (Simulation::refresh_contact_constants)
-  std::vector<double> normal_stiffness;  // k_n, N/m
-  std::vector<double> normal_damping;    // c_n, N s/m
   // results of the last force computation
   std::vector<Vec3> force_on_first;    // N
   std::vector<Vec3> torque_on_first;   // N m
@@ -47,9 +44,8 @@ struct PairContacts {
   template <class Io>
   void for_each_field(Io&& io) {
     io(row_start), io(partner), io(col_start), io(col_pair), io(sliding_spring), io(rolling_angle),
-        io(twisting_angle), io(rolling_force_displacement), io(normal_stiffness),
-        io(normal_damping), io(force_on_first), io(torque_on_first), io(torque_on_second),
-        io(normal_force);
+        io(twisting_angle), io(rolling_force_displacement), io(force_on_first), io(torque_on_first),
+        io(torque_on_second), io(normal_force);
   }
 };
 

@@ -254,16 +254,24 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const bool drifted = drift > 0.0;
 
   // the pair's constants
-  const vd normal_stiffness = load_lanes(in.normal_stiffness, e, 1, 0);
-  const vd normal_damping = load_lanes(in.normal_damping, e, 1, 0);
-  vd rns, rzs, friction;
+  vd stiffness_per_radius, damping_ratio, rns, rzs, friction;
   for (int l = 0; l < lanes; ++l) {
     const PairParams& pair =
         in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]];
+    stiffness_per_radius[l] = pair.stiffness_per_radius;
+    damping_ratio[l] = pair.damping_ratio;
     rns[l] = pair.rns;
     rzs[l] = pair.rzs;
     friction[l] = pair.friction;
   }
+  // normal_params: k_n = pi E r* and c_n = 2 zeta sqrt(k_n m*), with r* = r_i r_j / (r_i + r_j)
+  // and m* = 1 / (1/m_i + 1/m_j); computed per contact rather than stored per entry (16 B per
+  // entry; docs/performance.md sec. 13)
+  const vd inverse_mass_i = load_lanes(in.inverse_mass, lane_index(b.i), 1, 0);
+  const vd inverse_mass_j = load_lanes(in.inverse_mass, lane_index(b.j), 1, 0);
+  const vd normal_stiffness = stiffness_per_radius * (ri * rj / reach);
+  const vd normal_damping =
+      2.0 * damping_ratio * lane_sqrt(normal_stiffness * (1.0 / (inverse_mass_i + inverse_mass_j)));
 
   // normal_force: F_n = k_n U_n + c_n dU_n/dt, clamped at 0
   const vd f = normal_stiffness * overlap + normal_damping * overlap_rate;

@@ -53,11 +53,9 @@ struct SimdPairInput {
   int32_t material_count;
   const uint32_t* row_start;
   const uint32_t* partner;
-  const uint32_t* owner;           // per entry: its first particle (the row it lies in)
-  const double* normal_stiffness;  // per entry, N/m
-  const double* normal_damping;    // per entry, N s/m
-  double* sliding_spring;          // per entry, in/out
-  double* force_on_first;          // per entry, out
+  const uint32_t* owner;   // per entry: its first particle (the row it lies in)
+  double* sliding_spring;  // per entry, in/out
+  double* force_on_first;  // per entry, out
   double* torque_on_first;
   double* torque_on_second;
   double* normal_force;

@@ -23,7 +23,6 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
 
 void Simulation::rebuild_neighbors() {
   neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
-  refresh_contact_constants();
   index_entry_owners();
 }
 
@@ -103,7 +102,6 @@ void Simulation::set_pair_table(PairTable table) {
     throw std::invalid_argument(
         "set_pair_table: the materials and the pieces of the contact law must not change");
   table_ = std::move(table);
-  refresh_contact_constants();
 }
 
 // The force sources, in the order they are summed: pair contacts, wall contacts, then (in
@@ -243,7 +241,7 @@ std::vector<Wall> read_walls(StateReader& in) {
   return walls;
 }
 
-constexpr uint64_t state_magic = 0x67726e6c61623032;  // "grnlab02"
+constexpr uint64_t state_magic = 0x67726e6c61623033;  // "grnlab03"
 
 }  // namespace
 
@@ -265,8 +263,14 @@ void Simulation::save_state(StateWriter& out) const {
 
 Simulation::Simulation(StateReader& in, PairTable table)
     : table_(std::move(table)), neighbors_(1.0) {
-  if (in.value<uint64_t>() != state_magic)
-    throw std::runtime_error("not a grainlab simulation state");
+  const uint64_t magic = in.value<uint64_t>();
+  // The last byte is the format's version (ASCII digits); the first seven say "grnlab0".
+  if ((magic >> 8) == (state_magic >> 8) && magic != state_magic)
+    throw std::runtime_error(fmt::format(
+        "a simulation state of format {} (another grainlab version); this build reads format {}: "
+        "start the run again",
+        static_cast<char>(magic & 0xff), static_cast<char>(state_magic & 0xff)));
+  if (magic != state_magic) throw std::runtime_error("not a grainlab simulation state");
   settings_ = in.value<SimulationSettings>();
   pieces_ = in.value<ContactPieces>();
   std::vector<PairParams> entries;

@@ -111,7 +111,6 @@ class Simulation {
   void compute_forces(double drift);
   void compute_pair_forces(double drift);
   void rebuild_neighbors();
-  void refresh_contact_constants();
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;

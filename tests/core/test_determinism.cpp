@@ -91,3 +91,27 @@ TEST(Determinism, TruncatedStateIsRefused) {
   StateReader cut(saved.bytes().substr(0, saved.bytes().size() / 2));
   EXPECT_THROW(Simulation(cut, table), std::runtime_error);
 }
+
+TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
+  // The first 8 bytes are the format's magic, "grnlab0" and a version digit: a state written by
+  // another version (format 2 stored k_n and c_n per entry) is refused with both versions named.
+  ParticleStore p;
+  p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
+  const PairTable table = two_material_table(0.5, 0.3);
+  Simulation a(std::move(p), {plane_wall({}, {0, 0, 1})}, table, settings_for(1e-3, 0.5, 0.1));
+  StateWriter saved;
+  a.save_state(saved);
+  std::string bytes = saved.bytes();
+  bytes[0] = '2';  // little-endian: the version is the lowest byte
+  StateReader old(bytes);
+  try {
+    Simulation b(old, table);
+    ADD_FAILURE() << "a state of format 2 was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("format 3"), std::string::npos) << e.what();
+  }
+  bytes[7] = 'x';  // not a grainlab state at all
+  StateReader foreign(bytes);
+  EXPECT_THROW(Simulation(foreign, table), std::runtime_error);
+}
