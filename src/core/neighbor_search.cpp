@@ -189,6 +189,33 @@ void carry_history(const Store& old, const std::vector<KeyedEntry>& old_keys, St
   }
 }
 
+// The history fields of `store`, moved out (the rest stays behind, to be freed with `store`).
+template <class Store>
+Store histories_of(Store&& store) {
+  Store h;
+  h.sliding_spring = std::move(store.sliding_spring);
+  h.rolling_angle = std::move(store.rolling_angle);
+  h.twisting_angle = std::move(store.twisting_angle);
+  h.rolling_force_displacement = std::move(store.rolling_force_displacement);
+  return h;
+}
+
+// The keys of the entries of `s` (CSR rows per particle) that carry history, sorted; counted
+// first so that the vector is allocated once, at its size.
+template <class Store, class KeyOf>
+std::vector<KeyedEntry> history_keys(const Store& s, size_t particles, KeyOf key_of) {
+  std::vector<KeyedEntry> keys;
+  if (s.row_start.size() != particles + 1) return keys;
+  size_t count = 0;
+  for (size_t e = 0; e < s.size(); ++e) count += has_history(s, e);
+  keys.reserve(count);
+  for (size_t i = 0; i < particles; ++i)
+    for (uint32_t e = s.row_start[i]; e < s.row_start[i + 1]; ++e)
+      if (has_history(s, e)) keys.push_back({key_of(i, e), e});
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
 uint64_t pair_key(uint32_t id_a, uint32_t id_b) {
   const uint32_t lo = std::min(id_a, id_b), hi = std::max(id_a, id_b);
   return (static_cast<uint64_t>(lo) << 32) | hi;
@@ -199,24 +226,18 @@ uint64_t pair_key(uint32_t id_a, uint32_t id_b) {
 void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, PairContacts& pairs,
                              WallContacts& wall_contacts, ContactPieces pieces) {
   // Remember the histories under permanent keys before indices change.
-  std::vector<KeyedEntry> old_pair_keys, old_wall_keys;
-  if (pairs.row_start.size() == p.size() + 1) {
-    for (size_t i = 0; i < p.size(); ++i)
-      for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
-        if (has_history(pairs, e))
-          old_pair_keys.push_back({pair_key(p.id[i], p.id[pairs.partner[e]]), e});
-  }
-  if (wall_contacts.row_start.size() == p.size() + 1) {
-    for (size_t i = 0; i < p.size(); ++i)
-      for (uint32_t e = wall_contacts.row_start[i]; e < wall_contacts.row_start[i + 1]; ++e)
-        if (has_history(wall_contacts, e))
-          old_wall_keys.push_back(
-              {(static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e], e});
-  }
-  std::sort(old_pair_keys.begin(), old_pair_keys.end());
-  std::sort(old_wall_keys.begin(), old_wall_keys.end());
-  PairContacts old_pairs = std::move(pairs);
-  WallContacts old_walls = std::move(wall_contacts);
+  std::vector<KeyedEntry> old_pair_keys = history_keys(pairs, p.size(), [&](size_t i, uint32_t e) {
+    return pair_key(p.id[i], p.id[pairs.partner[e]]);
+  });
+  std::vector<KeyedEntry> old_wall_keys =
+      history_keys(wall_contacts, p.size(), [&](size_t i, uint32_t e) {
+        return (static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e];
+      });
+  // Only the histories of the old stores are read from here on: the rest of them is freed
+  // before the new stores are built, so that the rebuild does not hold two whole contact stores
+  // (docs/performance.md sec. 13).
+  PairContacts old_pairs = histories_of(std::move(pairs));
+  WallContacts old_walls = histories_of(std::move(wall_contacts));
   pairs = PairContacts{};
   wall_contacts = WallContacts{};
 
@@ -224,14 +245,20 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   build_pairs(p, pairs);
   build_wall_candidates(p, walls, wall_contacts);
 
-  // Entry -> first particle, for the key of each new pair entry.
-  const std::vector<uint32_t> first = row_of_each_entry(pairs.row_start);
-  carry_history(old_pairs, old_pair_keys, pairs, pieces,
-                [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
-  const std::vector<uint32_t> owner = row_of_each_entry(wall_contacts.row_start);
-  carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
-    return (static_cast<uint64_t>(p.id[owner[e]]) << 16) | wall_contacts.wall[e];
-  });
+  {  // entry -> first particle, for the key of each new pair entry
+    const std::vector<uint32_t> first = row_of_each_entry(pairs.row_start);
+    carry_history(old_pairs, old_pair_keys, pairs, pieces,
+                  [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
+  }
+  {
+    const std::vector<uint32_t> owner = row_of_each_entry(wall_contacts.row_start);
+    carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
+      return (static_cast<uint64_t>(p.id[owner[e]]) << 16) | wall_contacts.wall[e];
+    });
+  }
+  // and the old histories and keys before the results are allocated
+  old_pairs = PairContacts{}, old_walls = WallContacts{};
+  old_pair_keys = {}, old_wall_keys = {};
 
   const size_t m = pairs.size();
   pairs.force_on_first.assign(m, Vec3{});

@@ -22,6 +22,7 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
 }
 
 void Simulation::rebuild_neighbors() {
+  entry_owners_ = {};  // made anew below: not held through the rebuild
   neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
   index_entry_owners();
 }
