@@ -18,10 +18,20 @@ Progress::Progress(std::string label, bool quiet, double interval_s)
 void Progress::update(double fraction, const std::string& detail) {
   if (quiet_) return;
   const auto now = std::chrono::steady_clock::now();
-  if (first_fraction_ < 0.0) first_fraction_ = fraction, first_update_ = now;
+  const bool known = fraction >= 0.0;
+  if (known && first_fraction_ < 0.0) first_fraction_ = fraction, first_update_ = now;
   if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (!known) {
+    const std::string text = fmt::format("{}: {}  elapsed {:.0f} s", label_, detail, elapsed);
+    if (tty_)
+      fmt::print(stderr, "\r{:<100}", text);
+    else
+      fmt::print(stderr, "{}\n", text);
+    std::fflush(stderr);
+    return;
+  }
   // From this session's rate since the first update: a resumed run did the part before
   // first_fraction_ earlier.
   const double done = fraction - first_fraction_;

@@ -10,8 +10,11 @@ namespace grainlab {
 class Progress {
  public:
   Progress(std::string label, bool quiet, double interval_s = 5.0);
-  // fraction in [0, 1]; `detail` e.g. "t = 1.2e-3 s" or "axial strain 4.1 %".
+  // fraction in [0, 1]; `detail` e.g. "t = 1.2e-3 s" or "axial strain 4.1 %". A negative
+  // fraction: how far the run is cannot be told (it stops on a criterion, e.g. equilibrium), so
+  // the line shows the detail and the elapsed time, no percentage and no ETA.
   void update(double fraction, const std::string& detail);
+  static constexpr double unknown_fraction = -1.0;
   void finish(const std::string& detail);
   // A line of its own (unless quiet), e.g. where a resumed run continues.
   void message(const std::string& text);

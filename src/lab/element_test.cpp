@@ -219,7 +219,7 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
   const auto on_check = [&](const HoldState& state) {
     if (interrupt_requested())
       throw Interrupted("interrupted before the loading began: nothing to resume");
-    progress.update(0.0,
+    progress.update(Progress::unknown_fraction,
                     fmt::format("re-equilibrating: wall stress error {:.2f} %, unbalanced {:.1e}",
                                 100 * state.max_stress_error, state.unbalanced));
     return true;

@@ -67,8 +67,9 @@ class Compression : public LoadingStage {
     if (s_.step == 0) record(run);
     if (s_.step % 1000 == 0)
       progress.update(
-          0.0, fmt::format("{}: axial strain {:.3f} %", s_.phase > 0 ? "loading" : "unloading",
-                           100 * box_strain(s_.size0, box_size(run.sim.walls())).z));
+          Progress::unknown_fraction,
+          fmt::format("{}: axial strain {:.3f} %", s_.phase > 0 ? "loading" : "unloading",
+                      100 * box_strain(s_.size0, box_size(run.sim.walls())).z));
   }
 
  private:

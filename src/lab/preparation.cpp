@@ -334,11 +334,20 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
       st.friction_restored = true;
       switched = true;  // not a stop yet: the packing must come to rest with the measured friction
     }
-    if (progress)
+    if (progress) {
+      // The preparation stops on criteria (the target, then equilibrium), long before its time
+      // limit s.max_time: only the affine compaction toward a target solid fraction can say how
+      // far it is; the holds show their state without a percentage or an ETA.
+      double fraction = Progress::unknown_fraction;
+      if (st.stage == PrepStage::compacting && s.target_solid_fraction)
+        fraction = std::clamp((state.solid_fraction - out.inserted_solid_fraction) /
+                                  (*s.target_solid_fraction - out.inserted_solid_fraction),
+                              0.0, 1.0);
       progress->update(
-          std::min(1.0, sim.time() / s.max_time),
+          fraction,
           fmt::format("{}: phi = {:.4f}, wall stress error {:.2f} %, unbalanced {:.1e}", stage,
                       state.solid_fraction, 100 * state.max_stress_error, state.unbalanced));
+    }
     return st.friction_restored && !switched;
   };
   const HoldCriteria criteria{s.confining_stress, s.max_strain_rate, s.stress_tolerance,
