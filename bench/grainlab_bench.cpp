@@ -6,6 +6,7 @@
 //   grainlab_bench dense-11k --threads 2 --reps 1 --steps 4000
 //   grainlab_bench dense-11k --tile 4x4x4           (64 copies side by side: 745k beads)
 //   grainlab_bench dense-11k --write-lammps-data out.data   (same packing for the peer codes)
+//   grainlab_bench dense-88k --specimen DIR/specimen.csv   (the lab's plane strain specimen)
 //   grainlab_bench settle-1M --allow-1m
 #include <fmt/format.h>
 #include <omp.h>
@@ -21,6 +22,8 @@
 
 #include "bench/scenes.hpp"
 #include "grainlab/version.hpp"
+#include "io/config_error.hpp"
+#include "lab/specimen.hpp"
 
 using namespace grainlab;
 using namespace grainlab::bench;
@@ -56,7 +59,21 @@ std::string hostname() {
   return name;
 }
 
-Packing load_or_make(const std::string& workload, const std::string& cache_dir, bool allow_1m) {
+// dense-88k: the plane strain reference specimen as the lab's own preparation leaves it
+// (`grainlab prepare examples/plane_strain/reference.toml --out DIR`, ~22 minutes on 2 cores,
+// checkpointed): its beads and box, read from DIR/specimen.csv.
+Packing packing_of_specimen(const std::string& specimen_csv) {
+  const Specimen s = load_specimen(specimen_csv, glass_density, 0);
+  Packing p;
+  p.radius = s.particles.radius;
+  p.position = s.particles.position;
+  p.box_lo = s.low;
+  p.box_hi = s.high;
+  return p;
+}
+
+Packing load_or_make(const std::string& workload, const std::string& cache_dir, bool allow_1m,
+                     const std::string& specimen_csv) {
   std::filesystem::create_directories(cache_dir);
   const std::string path = cache_dir + "/" + workload + ".csv";
   Packing p;
@@ -68,7 +85,13 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
   if (workload == "dense-11k") {
     p = make_dense_packing(11636, {0.035, 0.035, 0.080}, 20190601, true);
   } else if (workload == "dense-88k") {
-    p = make_dense_packing(88000, {0.060, 0.100, 0.100}, 20190602, true);
+    if (specimen_csv.empty())
+      throw CLI::ValidationError(
+          "dense-88k",
+          "the plane strain reference specimen: prepare it once with `grainlab prepare "
+          "examples/plane_strain/reference.toml --out DIR` (about 22 minutes on 2 cores) and "
+          "pass --specimen DIR/specimen.csv");
+    p = packing_of_specimen(specimen_csv);
   } else if (workload == "settle-1M") {
     if (!allow_1m) throw CLI::ValidationError("settle-1M", "a million beads: pass --allow-1m");
     // Solid fraction 0.25 in a 0.25 x 0.25 x 0.27 m box; gravity does the rest.
@@ -91,7 +114,7 @@ int main(int argc, char** argv) {
   long steps = 0, warmup = 200;
   std::string cache_dir = "bench-cache";
   std::string results_dir = std::string(GRAINLAB_SOURCE_DIR) + "/bench/results";
-  std::string lammps_data, tile;
+  std::string lammps_data, tile, specimen_csv;
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false;
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
@@ -103,6 +126,9 @@ int main(int argc, char** argv) {
   app.add_option("--results-dir", results_dir, "where <hostname>.csv gets a row per run");
   app.add_option("--write-lammps-data", lammps_data,
                  "write the packing as a LAMMPS data file and exit");
+  app.add_option("--specimen", specimen_csv,
+                 "dense-88k: the specimen.csv of `grainlab prepare "
+                 "examples/plane_strain/reference.toml` (read once, then cached)");
   app.add_option("--tile", tile, "run NXxNYxNZ copies of the packing side by side");
   app.add_option("--label", label, "free text stored in the CSV row (e.g. the commit)");
   app.add_flag("--allow-1m", allow_1m, "allow building the settle-1M workload");
@@ -112,7 +138,16 @@ int main(int argc, char** argv) {
                "skin) and print the peak RSS with it");
   CLI11_PARSE(app, argc, argv);
 
-  Packing packing = load_or_make(workload, cache_dir, allow_1m);
+  Packing packing;
+  try {
+    packing = load_or_make(workload, cache_dir, allow_1m, specimen_csv);
+  } catch (const CLI::ValidationError& e) {
+    fmt::print(stderr, "grainlab_bench: {}\n", e.what());
+    return 2;
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "grainlab_bench: {}\n", e.what());
+    return 2;
+  }
   std::string name = workload;
   if (!tile.empty()) {
     int nx = 1, ny = 1, nz = 1;

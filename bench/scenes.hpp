@@ -2,7 +2,9 @@
 //
 //   dense-11k  11,636 reference glass beads (d = 2 mm +- 1 %) prepared by the triaxial test's own
 //              preparation in a 35 x 35 x 80 mm nominal box at 150 kPa (the triaxial specimen)
-//   dense-88k  88,000 beads, 60 wide x 100 thick x 100 high mm target (the plane strain specimen)
+//   dense-88k  88,400 beads in 60 wide x 100 thick x 100 high mm at 150 kPa: the plane strain
+//              reference specimen made by the lab's own preparation (grainlab prepare
+//              examples/plane_strain/reference.toml), read by grainlab_bench --specimen
 //   settle-1M  a million beads inserted loosely in a tall box, settling under gravity (opt-in)
 //
 // A dense packing is expensive to make, so it is made once and cached as a CSV (positions and
