@@ -55,7 +55,13 @@ struct SceneSetup {
 };
 
 SceneSetup set_up(const std::string& config_path) {
-  SceneSetup s{load_scene(config_path)};
+  SceneSetup s{.config = load_scene(config_path),
+               .table = PairTable{{}},
+               .particles = {},
+               .derived = {},
+               .dt = {},
+               .settings = {},
+               .total_steps = 0};
   const SceneConfig& config = s.config;
   s.table = build_pair_table(config);
   s.particles = build_particles(config);

@@ -213,7 +213,14 @@ ElementRun start_element_test(const std::string& type, const std::string& path,
                                         : cuboid_walls(specimen.low, specimen.high,
                                                        sp.lateral_material, sp.platen_material),
                             c.table, step.settings),
-                 type, path, config_text};
+                 type,
+                 path,
+                 config_text,
+                 /*run_info=*/{},
+                 /*curve_rows=*/{},
+                 /*vtk_index=*/{},
+                 /*test_state=*/{},
+                 /*wall_time_before=*/0.0};
   // A specimen is stored without contact history (tangential springs), so it is first brought
   // back to equilibrium under the confining stress before the loading starts.
   const auto on_check = [&](const HoldState& state) {
