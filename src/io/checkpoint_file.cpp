@@ -64,7 +64,7 @@ StateReader open_checkpoint(const std::string& path, uint64_t magic, const char*
     header.config_path = in.text();
     header.config_text = in.text();
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", path, e.what()));
+    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", path, e.what()));
   }
   return in;
 }

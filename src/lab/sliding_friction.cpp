@@ -100,7 +100,7 @@ Simulation restored_pull(const PullState& pull, const PairTable& table, size_t w
       throw std::runtime_error("not the state of this test's pull");
     return sim;
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: damaged checkpoint ({})", file, e.what()));
+    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", file, e.what()));
   }
 }
 
