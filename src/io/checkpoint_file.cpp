@@ -64,9 +64,13 @@ StateReader open_checkpoint(const std::string& path, uint64_t magic, const char*
     header.config_path = in.text();
     header.config_text = in.text();
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", path, e.what()));
+    throw unresumable_checkpoint(path, e);
   }
   return in;
+}
+
+ConfigError unresumable_checkpoint(const std::string& path, const std::exception& why) {
+  return ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", path, why.what()));
 }
 
 }  // namespace grainlab

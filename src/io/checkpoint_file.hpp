@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/state_io.hpp"
+#include "io/config_error.hpp"
 
 namespace grainlab {
 
@@ -35,5 +36,9 @@ void write_checkpoint_header(StateWriter& out, uint64_t magic, const CheckpointH
 // ConfigError naming the file when it is missing, damaged or not a `kind` (its magic number).
 StateReader open_checkpoint(const std::string& path, uint64_t magic, const char* kind,
                             CheckpointHeader& header);
+
+// The error for a checkpoint that was read but cannot be resumed (a simulation state of another
+// format, or contents that do not fit this run): the file and the reason, for the caller to throw.
+ConfigError unresumable_checkpoint(const std::string& path, const std::exception& why);
 
 }  // namespace grainlab

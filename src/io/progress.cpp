@@ -23,22 +23,18 @@ void Progress::update(double fraction, const std::string& detail) {
   if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (!known) {
-    const std::string text = fmt::format("{}: {}  elapsed {:.0f} s", label_, detail, elapsed);
-    if (tty_)
-      fmt::print(stderr, "\r{:<100}", text);
-    else
-      fmt::print(stderr, "{}\n", text);
-    std::fflush(stderr);
-    return;
+  std::string text;
+  if (known) {
+    // From this session's rate since the first update: a resumed run did the part before
+    // first_fraction_ earlier.
+    const double done = fraction - first_fraction_;
+    const double since_first = std::chrono::duration<double>(now - first_update_).count();
+    const double eta = done > 0.0 ? since_first * (1.0 - fraction) / done : 0.0;
+    text = fmt::format("{}: {:5.1f} %  {}  elapsed {:.0f} s  ETA {:.0f} s", label_,
+                       100.0 * fraction, detail, elapsed, eta);
+  } else {
+    text = fmt::format("{}: {}  elapsed {:.0f} s", label_, detail, elapsed);
   }
-  // From this session's rate since the first update: a resumed run did the part before
-  // first_fraction_ earlier.
-  const double done = fraction - first_fraction_;
-  const double since_first = std::chrono::duration<double>(now - first_update_).count();
-  const double eta = done > 0.0 ? since_first * (1.0 - fraction) / done : 0.0;
-  const std::string text = fmt::format("{}: {:5.1f} %  {}  elapsed {:.0f} s  ETA {:.0f} s", label_,
-                                       100.0 * fraction, detail, elapsed, eta);
   if (tty_)
     fmt::print(stderr, "\r{:<100}", text);
   else

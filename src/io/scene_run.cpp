@@ -109,8 +109,7 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
       if (p.step < 0 || p.step > setup.total_steps || restored->step_count() != p.step)
         throw std::runtime_error("step out of range");
     } catch (const std::runtime_error& e) {
-      throw ConfigError(
-          fmt::format("{}/checkpoint.bin: cannot resume from this checkpoint ({})", dir, e.what()));
+      throw unresumable_checkpoint(dir + "/checkpoint.bin", e);
     }
   }
   // The interrupt flag is looked at every step, the wall clock every 1024.

@@ -53,7 +53,7 @@ ElementRun load_checkpoint(const std::string& path, PairTable table) {
                       std::move(h.config_text), std::move(info),   std::move(rows),
                       std::move(vtk),           std::move(state),  wall_time_before};
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", path, e.what()));
+    throw unresumable_checkpoint(path, e);
   }
 }
 

@@ -283,8 +283,7 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
                             ? "compacting"
                             : (st.stage == PrepStage::holding ? "holding" : "done")));
     } catch (const std::runtime_error& e) {
-      throw ConfigError(
-          fmt::format("{}: cannot resume from this checkpoint ({})", checkpoints->path, e.what()));
+      throw unresumable_checkpoint(checkpoints->path, e);
     }
   }
   Simulation sim = resumed ? std::move(*resumed)

@@ -10,6 +10,7 @@
 #include "contact/stability.hpp"
 #include "contact/time_step.hpp"
 #include "core/random_insertion.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/config_error.hpp"
 #include "io/progress.hpp"
 #include "lab/deposition.hpp"
@@ -100,7 +101,7 @@ Simulation restored_pull(const PullState& pull, const PairTable& table, size_t w
       throw std::runtime_error("not the state of this test's pull");
     return sim;
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", file, e.what()));
+    throw unresumable_checkpoint(file, e);
   }
 }
 

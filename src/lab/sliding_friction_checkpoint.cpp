@@ -124,7 +124,7 @@ SlidingFrictionCheckpoints SlidingFrictionCheckpoints::resume(const std::string&
     }
     if (!in.at_end()) throw std::runtime_error("trailing data");
   } catch (const std::runtime_error& e) {
-    throw ConfigError(fmt::format("{}: cannot resume from this checkpoint ({})", path, e.what()));
+    throw unresumable_checkpoint(path, e);
   }
   return out;
 }

@@ -81,31 +81,34 @@ TEST(Determinism, RestoredStateContinuesBitIdentically) {
                            x.size() * sizeof(Vec3)));
 }
 
-TEST(Determinism, TruncatedStateIsRefused) {
+namespace {
+// The saved state of one bead above a floor, and the table it was made with.
+const PairTable one_bead_table = two_material_table(0.5, 0.3);
+std::string one_bead_state() {
   ParticleStore p;
   p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
-  const PairTable table = two_material_table(0.5, 0.3);
-  Simulation a(std::move(p), {plane_wall({}, {0, 0, 1})}, table, settings_for(1e-3, 0.5, 0.1));
+  Simulation a(std::move(p), {plane_wall({}, {0, 0, 1})}, one_bead_table,
+               settings_for(1e-3, 0.5, 0.1));
   StateWriter saved;
   a.save_state(saved);
-  StateReader cut(saved.bytes().substr(0, saved.bytes().size() / 2));
-  EXPECT_THROW(Simulation(cut, table), std::runtime_error);
+  return saved.bytes();
+}
+}  // namespace
+
+TEST(Determinism, TruncatedStateIsRefused) {
+  const std::string bytes = one_bead_state();
+  StateReader cut(bytes.substr(0, bytes.size() / 2));
+  EXPECT_THROW(Simulation(cut, one_bead_table), std::runtime_error);
 }
 
 TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
   // The first 8 bytes are the format's magic, "grnlab0" and a version digit: a state written by
   // another version (format 2 stored k_n and c_n per entry) is refused with both versions named.
-  ParticleStore p;
-  p.add(0, 0, 1e-3, glass_density, {0, 0, 0.01}, {}, {}, false);
-  const PairTable table = two_material_table(0.5, 0.3);
-  Simulation a(std::move(p), {plane_wall({}, {0, 0, 1})}, table, settings_for(1e-3, 0.5, 0.1));
-  StateWriter saved;
-  a.save_state(saved);
-  std::string bytes = saved.bytes();
+  std::string bytes = one_bead_state();
   bytes[0] = '2';  // little-endian: the version is the lowest byte
   StateReader old(bytes);
   try {
-    Simulation b(old, table);
+    Simulation b(old, one_bead_table);
     ADD_FAILURE() << "a state of format 2 was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
@@ -113,5 +116,5 @@ TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
   }
   bytes[7] = 'x';  // not a grainlab state at all
   StateReader foreign(bytes);
-  EXPECT_THROW(Simulation(foreign, table), std::runtime_error);
+  EXPECT_THROW(Simulation(foreign, one_bead_table), std::runtime_error);
 }
