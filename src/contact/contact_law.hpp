@@ -24,12 +24,20 @@ struct ContactHistoryRef {
   Vec3* rolling_force_displacement;
 };
 
+// The torques follow from two vectors: the tangential force turns each body about its centre
+// with torque lever × (n × F_t), and the rolling and twisting moments act on A as `moment` and
+// on B as -moment. So the torque on A is lever_a torque_arm + moment, on B lever_b torque_arm -
+// moment (torque_on_a / torque_on_b below). The pair store keeps the arm and the overlap, from
+// which each body's lever follows, instead of two torques (core/contact_store.hpp).
 struct ContactResponse {
   Vec3 force_on_a;          // N (B receives the opposite)
-  Vec3 torque_on_a;         // N m, about A's centre
-  Vec3 torque_on_b;         // N m, about B's centre
+  Vec3 torque_arm;          // n x F_t, N: torque per metre of lever, on either body
+  Vec3 moment;              // N m, rolling + twisting moment on A (zero without those pieces)
   double normal_stiffness;  // k_n, N/m
   double normal_force;      // F_n, N
+
+  Vec3 torque_on_a(double lever_a) const { return lever_a * torque_arm + moment; }
+  Vec3 torque_on_b(double lever_b) const { return lever_b * torque_arm - moment; }
 };
 
 // k_n = pi E r* (Eq. 4) and c_n = 2 zeta sqrt(k_n m*) (Eq. 7 corrected) of one contact. They
@@ -41,15 +49,14 @@ inline NormalParams normal_params(const PairParams& pair, double effective_radiu
   return {k_n, 2.0 * pair.damping_ratio * std::sqrt(k_n * effective_mass)};
 }
 
-// normal: k_n and c_n of this contact (normal_params); lever_a, lever_b: distance from each
-// centre to the contact point; effective_inertia I* in kg m^2; contact_radius a (Eq. 10, m), used
+// normal: k_n and c_n of this contact (normal_params); effective_inertia I* in kg m^2;
+// contact_radius a (Eq. 10, m), used
 // only by the rolling and twisting pieces. k.effective_radius is read only by those pieces and the
 // rolling-force piece; k.effective_mass is not read.
 template <bool Rolling, bool Twisting, bool RollingForce>
 inline ContactResponse contact_response(const PairParams& pair, const NormalParams& normal,
-                                        const ContactKinematics& k, double lever_a, double lever_b,
-                                        double effective_inertia, double contact_radius,
-                                        ContactHistoryRef h) {
+                                        const ContactKinematics& k, double effective_inertia,
+                                        double contact_radius, ContactHistoryRef h) {
   const Vec3& n = k.normal;
   const double c_n = normal.damping;
   const double f_n = normal_force(normal, k.overlap, k.overlap_rate);
@@ -72,9 +79,7 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
 
   ContactResponse r;
   r.force_on_a = tangential - f_n * n;
-  const Vec3 arm = cross(n, tangential);  // (n x F_t): torque per unit lever
-  r.torque_on_a = lever_a * arm;
-  r.torque_on_b = lever_b * arm;
+  r.torque_arm = cross(n, tangential);
   r.normal_stiffness = normal.stiffness;
   r.normal_force = f_n;
 
@@ -90,8 +95,7 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
       const Vec3 m = rolling_moment(rolling, rolling_rate(k.relative_rotation, n),
                                     rolling_rate(k.relative_angular_velocity, n), f_n, rh);
       *h.rolling_angle = rh.angle;
-      r.torque_on_a += m;
-      r.torque_on_b -= m;
+      r.moment += m;
     }
     if constexpr (Twisting) {
       const TwistingParams twisting{k_theta, c_theta, pair.twisting_friction * contact_radius};
@@ -99,8 +103,7 @@ inline ContactResponse contact_response(const PairParams& pair, const NormalPara
       const Vec3 m =
           twisting_moment(twisting, n, k.relative_rotation, k.relative_angular_velocity, f_n, th);
       *h.twisting_angle = th.angle;
-      r.torque_on_a += m;
-      r.torque_on_b -= m;
+      r.moment += m;
     }
   }
   return r;
@@ -142,20 +145,19 @@ inline void scale_step_increments(ContactKinematics& k, double fraction) {
 
 template <bool Rolling, bool Twisting, bool RollingForce>
 inline void charge_first_touch(const PairParams& pair, const NormalParams& normal,
-                               const ContactKinematics& k, double fraction, double lever_a,
-                               double lever_b, double effective_inertia, ContactResponse& r) {
+                               const ContactKinematics& k, double fraction,
+                               double effective_inertia, ContactResponse& r) {
   ContactKinematics touch = k;
   touch.overlap = 0.0;
   touch.tangential_displacement = touch.relative_rotation = Vec3{};
   Vec3 sliding{}, rolling{}, rolling_force{};
   double twisting = 0.0;
   const ContactResponse t = contact_response<Rolling, Twisting, RollingForce>(
-      pair, normal, touch, lever_a, lever_b, effective_inertia, 0.0,
-      {&sliding, &rolling, &twisting, &rolling_force});
+      pair, normal, touch, effective_inertia, 0.0, {&sliding, &rolling, &twisting, &rolling_force});
   const double weight = 0.5 * (2.0 * fraction - 1.0);
   r.force_on_a += weight * t.force_on_a;
-  r.torque_on_a += weight * t.torque_on_a;
-  r.torque_on_b += weight * t.torque_on_b;
+  r.torque_arm += weight * t.torque_arm;
+  if constexpr (Rolling || Twisting) r.moment += weight * t.moment;
 }
 
 }  // namespace grainlab

@@ -45,8 +45,8 @@ template <bool R, bool T, bool RF>
   const double reach = ri + rj;
   const double dist2 = norm2(d);
   if (dist2 >= reach * reach) {  // apart: no force, and the contact forgets its history
-    c.force_on_first[e] = c.torque_on_first[e] = c.torque_on_second[e] = Vec3{};
-    c.normal_force[e] = 0.0;
+    c.result[e] = PairResult{};
+    if constexpr (R || T) c.moment[e] = Vec3{};
     c.sliding_spring[e] = Vec3{};
     if constexpr (R) c.rolling_angle[e] = Vec3{};
     if constexpr (T) c.twisting_angle[e] = 0.0;
@@ -59,7 +59,7 @@ template <bool R, bool T, bool RF>
   k.overlap = reach - dist;
   if constexpr (R || T || RF) k.effective_radius = ri * rj / reach;
   // contact point halfway through the overlap
-  const double lever_i = ri - 0.5 * k.overlap, lever_j = rj - 0.5 * k.overlap;
+  const double lever_i = contact_lever(ri, k.overlap), lever_j = contact_lever(rj, k.overlap);
   set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever_i, p.velocity[j],
                         p.angular_velocity[j], lever_j, 0.5);
   set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever_i,
@@ -91,14 +91,11 @@ template <bool R, bool T, bool RF>
   // (about the noise) and cost 16 B per entry (docs/performance.md sec. 13)
   const NormalParams normal =
       normal_params(pair, ri * rj / reach, 1.0 / (p.inverse_mass[i] + p.inverse_mass[j]));
-  ContactResponse r =
-      contact_response<R, T, RF>(pair, normal, k, lever_i, lever_j, inertia, contact_radius, h);
+  ContactResponse r = contact_response<R, T, RF>(pair, normal, k, inertia, contact_radius, h);
   if (touch_fraction > 0.0)
-    charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever_i, lever_j, inertia, r);
-  c.force_on_first[e] = r.force_on_a;
-  c.torque_on_first[e] = r.torque_on_a;
-  c.torque_on_second[e] = r.torque_on_b;
-  c.normal_force[e] = r.normal_force;
+    charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, inertia, r);
+  c.result[e] = {r.force_on_a, r.torque_arm, k.overlap, r.normal_force};
+  if constexpr (R || T) c.moment[e] = r.moment;
   return k.overlap / std::min(ri, rj);
 }
 
@@ -127,6 +124,8 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 // runs the scalar law on the entries the kernel hands back (contacts that may have begun in this
 // step).
 // Every contact's arithmetic is the same whichever thread or lane computes it.
+static_assert(sizeof(PairResult) == pair_result_size * sizeof(double));
+
 double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                         const PairTable& table, PairContacts& c,
                         const std::vector<uint32_t>& owners, std::vector<double>& records,
@@ -150,10 +149,7 @@ double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                          c.partner.data(),
                          owners.data(),
                          &c.sliding_spring[0].x,
-                         &c.force_on_first[0].x,
-                         &c.torque_on_first[0].x,
-                         &c.torque_on_second[0].x,
-                         c.normal_force.data(),
+                         &c.result[0].force_on_first.x,
                          dt,
                          drift};
   const int materials = table.material_count();
@@ -251,11 +247,14 @@ double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const
       }
       const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
       ContactResponse resp =
-          contact_response<R, T, RF>(pair, normal, k, lever, 0.0, inertia, contact_radius, h);
+          contact_response<R, T, RF>(pair, normal, k, inertia, contact_radius, h);
       if (touch_fraction > 0.0)
-        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, lever, 0.0, inertia, resp);
+        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, inertia, resp);
       c.force_on_particle[e] = resp.force_on_a;
-      c.torque_on_particle[e] = resp.torque_on_a;
+      if constexpr (R || T)
+        c.torque_on_particle[e] = resp.torque_on_a(lever);
+      else
+        c.torque_on_particle[e] = lever * resp.torque_arm;
       c.normal_stiffness[e] = resp.normal_stiffness;
       c.normal_force[e] = resp.normal_force;
       max_fraction = std::max(max_fraction, overlap / r);

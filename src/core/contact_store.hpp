@@ -1,9 +1,9 @@
-// Contact storage, structure of arrays in neighbour-list order.
+// Contact storage, in neighbour-list order.
 //
 // PairContacts is the half Verlet list in CSR form: the partners of particle i are
 // partner[row_start[i] .. row_start[i+1]), all with index > i. Each entry carries its contact
-// history (present whether or not the spheres touch now; zero when they do not) and the force
-// and torques the last step computed for it. The transpose (col_start/col_pair) lists, for each
+// history (present whether or not the spheres touch now; zero when they do not) and what the
+// last step computed for it (PairResult). The transpose (col_start/col_pair) lists, for each
 // particle, the entries in which it is the second body, so that forces are gathered per
 // particle in a fixed order: no atomics, identical sums for any thread count.
 // Optional histories (rolling, twisting, rolling force) are empty unless a pair uses them.
@@ -24,6 +24,26 @@ inline std::vector<uint32_t> row_of_each_entry(const std::vector<uint32_t>& row_
   return row;
 }
 
+// What the last force evaluation of one pair entry left for the gather, in one cache line. The
+// gather reads each entry twice, once for each body, and the second read lies in another
+// particle's row: out of the caches that costs a line per entry, where force and torques in
+// separate arrays cost two (docs/performance.md sec. 14). The torques are not stored: the torque
+// of the tangential force on a body is lever × torque_arm, its lever the body's radius less half
+// the overlap (the contact point lies halfway through the overlap), the same product the law
+// forms. A pair with rolling or twisting pieces adds a moment (PairContacts::moment).
+struct alignas(64) PairResult {
+  Vec3 force_on_first;  // N (the second body receives the opposite)
+  Vec3 torque_arm;      // n x F_t, N: torque per metre of lever
+  double overlap;       // m (0 when not touching)
+  double normal_force;  // N (0 when not touching)
+};
+static_assert(sizeof(PairResult) == 64);
+
+// The lever of a body of radius r in a contact of this overlap (contact/contact_law.hpp).
+inline double contact_lever(double radius, double overlap) {
+  return radius - 0.5 * overlap;
+}
+
 struct PairContacts {
   std::vector<uint32_t> row_start;  // N + 1
   std::vector<uint32_t> partner;    // per entry: second particle
@@ -35,17 +55,25 @@ struct PairContacts {
   std::vector<double> twisting_angle;
   std::vector<Vec3> rolling_force_displacement;
   // results of the last force computation
-  std::vector<Vec3> force_on_first;    // N
-  std::vector<Vec3> torque_on_first;   // N m
-  std::vector<Vec3> torque_on_second;  // N m
-  std::vector<double> normal_force;    // N (0 when not touching)
+  std::vector<PairResult> result;
+  std::vector<Vec3> moment;  // N m, rolling + twisting moment on the first body (the second gets
+                             // the opposite); empty unless a pair has those pieces
 
   size_t size() const { return partner.size(); }
+  Vec3 torque_on_first(size_t e, double first_radius) const {
+    const PairResult& r = result[e];
+    const Vec3 t = contact_lever(first_radius, r.overlap) * r.torque_arm;
+    return moment.empty() ? t : t + moment[e];
+  }
+  Vec3 torque_on_second(size_t e, double second_radius) const {
+    const PairResult& r = result[e];
+    const Vec3 t = contact_lever(second_radius, r.overlap) * r.torque_arm;
+    return moment.empty() ? t : t - moment[e];
+  }
   template <class Io>
   void for_each_field(Io&& io) {
     io(row_start), io(partner), io(col_start), io(col_pair), io(sliding_spring), io(rolling_angle),
-        io(twisting_angle), io(rolling_force_displacement), io(force_on_first), io(torque_on_first),
-        io(torque_on_second), io(normal_force);
+        io(twisting_angle), io(rolling_force_displacement), io(result), io(moment);
   }
 };
 

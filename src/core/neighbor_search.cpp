@@ -261,10 +261,8 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   old_pair_keys = {}, old_wall_keys = {};
 
   const size_t m = pairs.size();
-  pairs.force_on_first.assign(m, Vec3{});
-  pairs.torque_on_first.assign(m, Vec3{});
-  pairs.torque_on_second.assign(m, Vec3{});
-  pairs.normal_force.assign(m, 0.0);
+  pairs.result.assign(m, PairResult{});
+  pairs.moment.assign(pieces.rolling || pieces.twisting ? m : 0, Vec3{});
   const size_t mw = wall_contacts.size();
   wall_contacts.force_on_particle.assign(mw, Vec3{});
   wall_contacts.torque_on_particle.assign(mw, Vec3{});

@@ -121,19 +121,9 @@ GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v
   out[2] = v.z[l];
 }
 
-// The velocities of each lane's particle from its record (particle_records): per lane a load of
-// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. The
-// two halves are loaded where they are first needed, which keeps fewer vectors live.
-using vd4 = double __attribute__((vector_size(32)));
-struct RecordHead {  // values 0..7
-  V3 velocity, spin;
-  vd velocity_at_end_x, velocity_at_end_y;
-};
-GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const uint32_t* index) {
-  vd r[lanes];  // r[l]: values 0..7 of lane l
-  for (int l = 0; l < lanes; ++l)
-    __builtin_memcpy(&r[l], record + size_t{index[l]} * particle_record_size, sizeof r[l]);
-  // 8 x 8 transpose: pairs of rows, then quads, then halves.
+// 8 x 8 transpose: value[v][l] = r[l][v] (rows of 8 values per lane to one vector per value, or
+// back: the transpose is its own inverse). Pairs of rows, then quads, then halves.
+GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) {
   vd a[lanes], b[lanes];
   for (int k = 0; k < 4; ++k) {
     a[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
@@ -148,7 +138,6 @@ GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const ui
     }
   // b[2 odd + s] (rows 0-3) and b[4 + 2 odd + s] (rows 4-7) hold values v and v + 4 with
   // v = odd + 2 s
-  vd value[8];
   for (int odd = 0; odd < 2; ++odd)
     for (int s = 0; s < 2; ++s) {
       const vd& lo = b[2 * odd + s];
@@ -157,6 +146,22 @@ GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const ui
       value[v] = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
       value[v + 4] = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
     }
+}
+
+// The velocities of each lane's particle from its record (particle_records): per lane a load of
+// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. The
+// two halves are loaded where they are first needed, which keeps fewer vectors live.
+using vd4 = double __attribute__((vector_size(32)));
+struct RecordHead {  // values 0..7
+  V3 velocity, spin;
+  vd velocity_at_end_x, velocity_at_end_y;
+};
+GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const uint32_t* index) {
+  vd r[lanes];  // r[l]: values 0..7 of lane l
+  for (int l = 0; l < lanes; ++l)
+    __builtin_memcpy(&r[l], record + size_t{index[l]} * particle_record_size, sizeof r[l]);
+  vd value[lanes];
+  transpose8(r, value);
   return {{value[0], value[1], value[2]}, {value[3], value[4], value[5]}, value[6], value[7]};
 }
 struct RecordTail {  // values 8..11
@@ -301,10 +306,10 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
     tangential = select(slip, capped, tangential);
     spring = select(slip, slipped_spring, spring);
   }
-  // contact_response: force on i, torques about both centres
+  // contact_response: force on i and the torque arm n x F_t (each body's torque is its lever
+  // times the arm, formed in the gather from the stored overlap)
   const V3 force_on_i = tangential - normal_force * n;
   const V3 arm = cross(n, tangential);
-  const V3 torque_on_i = lever_i * arm, torque_on_j = lever_j * arm;
   const vd fraction = overlap / (rj < ri ? rj : ri);
 
   // Which lanes to store: the batch's contacts, less those handed back to the scalar law.
@@ -317,29 +322,26 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
     else
       store |= 1u << l;
   }
+  // The results, one vector per value, transposed to one 64-byte PairResult per lane and stored
+  // whole (a line each, where a scatter per value would write 8 values across 8 lines).
+  const vd value[lanes] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x,
+                           arm.y,        arm.z,        overlap,      normal_force};
+  vd row[lanes];
+  transpose8(value, row);
+  static_assert(pair_result_size == lanes);
+  for (int l = 0; l < b.count; ++l)
+    if (store >> l & 1u)
+      __builtin_memcpy(in.result + size_t{b.e[l]} * pair_result_size, &row[l], sizeof row[l]);
 #if defined(__AVX512F__)
-  // scatter instructions: one per field instead of a lane extract and a store per lane
+  // the springs: a scatter instruction per component instead of a lane extract and a store per
+  // lane
   const __mmask8 m = static_cast<__mmask8>(store);
-  const auto scatter3 = [&](double* base, const V3& v) {
-    _mm512_mask_i32scatter_pd(base, m, e.times3, v.x, 8);
-    _mm512_mask_i32scatter_pd(base + 1, m, e.times3, v.y, 8);
-    _mm512_mask_i32scatter_pd(base + 2, m, e.times3, v.z, 8);
-  };
-  scatter3(in.force_on_first, force_on_i);
-  scatter3(in.torque_on_first, torque_on_i);
-  scatter3(in.torque_on_second, torque_on_j);
-  scatter3(in.sliding_spring, spring);
-  _mm512_mask_i32scatter_pd(in.normal_force, m, e.times1, normal_force, 8);
+  _mm512_mask_i32scatter_pd(in.sliding_spring, m, e.times3, spring.x, 8);
+  _mm512_mask_i32scatter_pd(in.sliding_spring + 1, m, e.times3, spring.y, 8);
+  _mm512_mask_i32scatter_pd(in.sliding_spring + 2, m, e.times3, spring.z, 8);
 #else
-  for (int l = 0; l < b.count; ++l) {
-    if (!(store >> l & 1u)) continue;
-    const uint32_t entry = b.e[l];
-    store_lane3(in.force_on_first, entry, force_on_i, l);
-    store_lane3(in.torque_on_first, entry, torque_on_i, l);
-    store_lane3(in.torque_on_second, entry, torque_on_j, l);
-    store_lane3(in.sliding_spring, entry, spring, l);
-    in.normal_force[entry] = normal_force[l];
-  }
+  for (int l = 0; l < b.count; ++l)
+    if (store >> l & 1u) store_lane3(in.sliding_spring, b.e[l], spring, l);
 #endif
   return max_fraction;
 }
@@ -374,12 +376,9 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
   const double* const radius = in.radius;
   const uint32_t* const row_start = in.row_start;
   const uint32_t* const partner = in.partner;
-  double* const force_on_first = in.force_on_first;
-  double* const torque_on_first = in.torque_on_first;
-  double* const torque_on_second = in.torque_on_second;
-  double* const normal_force = in.normal_force;
+  double* const result = in.result;
   double* const sliding_spring = in.sliding_spring;
-  double scratch[3];
+  alignas(64) double scratch[pair_result_size];
   // One flat pass over the entries of the rows (short rows would cost a mispredicted loop exit
   // each): the entry's first particle comes from the owner array.
   const uint32_t* const owner = in.owner;
@@ -406,10 +405,8 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
       return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
                                        (apart & ~to_scratch));
     };
-    store_zero3(destination(force_on_first, 3));
-    store_zero3(destination(torque_on_first, 3));
-    store_zero3(destination(torque_on_second, 3));
-    *destination(normal_force, 1) = 0.0;
+    const vd zero{};
+    __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
     store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
     const int l = b.count;
     b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;

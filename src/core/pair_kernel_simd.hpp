@@ -35,6 +35,9 @@ struct PairParams;
 // per value, 28 per batch of 8 contacts) had been the kernel's largest cost
 // (docs/performance.md sec. 12).
 constexpr int particle_record_size = 12;
+// Doubles per PairResult (core/contact_store.hpp): force on the first body, torque arm, overlap,
+// normal force.
+constexpr int pair_result_size = 8;
 
 // Raw views of the particle store and the pair contact store (SI units, Vec3 fields as
 // consecutive x, y, z doubles).
@@ -55,12 +58,9 @@ struct SimdPairInput {
   const uint32_t* partner;
   const uint32_t* owner;   // per entry: its first particle (the row it lies in)
   double* sliding_spring;  // per entry, in/out
-  double* force_on_first;  // per entry, out
-  double* torque_on_first;
-  double* torque_on_second;
-  double* normal_force;
-  double time_step;  // s
-  double drift;      // s: time the positions last drifted over (0 on a fresh state)
+  double* result;          // per entry, out: a PairResult (pair_result_size doubles)
+  double time_step;        // s
+  double drift;            // s: time the positions last drifted over (0 on a fresh state)
 };
 
 // Computes the entries of rows [first_row, end_row). Entries left to the caller (first touch in

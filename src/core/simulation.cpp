@@ -113,52 +113,6 @@ void Simulation::compute_forces(double drift) {
   gather();
 }
 
-// Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
-// where it is second (opposite force), its wall contacts and its external force (only while
-// some particle has one, so that a run without them adds nothing, not even a zero).
-void Simulation::gather() {
-  ParticleStore& p = particles_;
-  const PairContacts& c = pairs_;
-  const WallContacts& wc = wall_contacts_;
-  const Vec3 g = settings_.gravity;
-  const long n = static_cast<long>(p.size());
-  const bool external = external_forces_;
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
-    Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
-    Vec3 t;
-    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-      f += c.force_on_first[e];
-      t += c.torque_on_first[e];
-    }
-    for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
-      const uint32_t e = c.col_pair[k];
-      f -= c.force_on_first[e];
-      t += c.torque_on_second[e];
-    }
-    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
-      f += wc.force_on_particle[e];
-      t += wc.torque_on_particle[e];
-    }
-    if (external) f += p.external_force[i];
-    p.force[i] = f;
-    p.torque[i] = t;
-  }
-  // Wall totals, serial in entry order (few entries; deterministic).
-  for (Wall& w : walls_) {
-    w.force = Vec3{};
-    w.contact_stiffness = 0.0;
-    w.contact_count = 0;
-  }
-  for (size_t e = 0; e < wc.size(); ++e) {
-    if (wc.normal_stiffness[e] == 0.0) continue;
-    Wall& w = walls_[wc.wall[e]];
-    w.force -= wc.force_on_particle[e];
-    w.contact_stiffness += wc.normal_stiffness[e];
-    ++w.contact_count;
-  }
-}
-
 const char* Simulation::step_key() const {
   return settings_.step_key == SimulationSettings::StepKey::scene ? "simulation.dt_fraction (or dt)"
                                                                   : "test.dt_fraction";
@@ -204,8 +158,8 @@ double Simulation::kinetic_energy() const {
 }
 
 long Simulation::touching_pair_count() const {
-  return std::count_if(pairs_.normal_force.begin(), pairs_.normal_force.end(),
-                       [](double f) { return f > 0.0; });
+  return std::count_if(pairs_.result.begin(), pairs_.result.end(),
+                       [](const PairResult& r) { return r.normal_force > 0.0; });
 }
 
 }  // namespace grainlab
@@ -242,7 +196,7 @@ std::vector<Wall> read_walls(StateReader& in) {
   return walls;
 }
 
-constexpr uint64_t state_magic = 0x67726e6c61623033;  // "grnlab03"
+constexpr uint64_t state_magic = 0x67726e6c61623034;  // "grnlab04"
 
 }  // namespace
 

@@ -27,8 +27,9 @@ Tensor3 love_weber_stress(const Simulation& sim, double volume) {
   // Serial, in storage order: deterministic.
   for (size_t i = 0; i < p.size(); ++i) {
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-      if (c.normal_force[e] == 0.0 && norm2(c.force_on_first[e]) == 0.0) continue;
-      const Vec3 f = -1.0 * c.force_on_first[e];  // on the second particle
+      const PairResult& r = c.result[e];
+      if (r.normal_force == 0.0 && norm2(r.force_on_first) == 0.0) continue;
+      const Vec3 f = -1.0 * r.force_on_first;  // on the second particle
       const Vec3 l = p.position[c.partner[e]] - p.position[i];
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) s[a][b] += f[a] * l[b];
@@ -93,7 +94,7 @@ std::vector<int> contacts_per_particle(const Simulation& sim) {
   std::vector<int> count(p.size(), 0);
   for (size_t i = 0; i < p.size(); ++i) {
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e)
-      if (c.normal_force[e] > 0.0) ++count[i], ++count[c.partner[e]];
+      if (c.result[e].normal_force > 0.0) ++count[i], ++count[c.partner[e]];
     for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
       count[i] += wc.normal_force[e] > 0.0;
   }
@@ -111,8 +112,8 @@ double unbalanced_force_ratio(const Simulation& sim) {
   }
   double contact = 0.0;
   long n = 0;
-  for (double f : sim.pair_contacts().normal_force)
-    if (f > 0.0) contact += f, ++n;
+  for (const PairResult& r : sim.pair_contacts().result)
+    if (r.normal_force > 0.0) contact += r.normal_force, ++n;
   for (double f : sim.wall_contacts().normal_force)
     if (f > 0.0) contact += f, ++n;
   if (n == 0 || free == 0) return 1.0;

@@ -103,16 +103,17 @@ TEST(Determinism, TruncatedStateIsRefused) {
 
 TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
   // The first 8 bytes are the format's magic, "grnlab0" and a version digit: a state written by
-  // another version (format 2 stored k_n and c_n per entry) is refused with both versions named.
+  // another version (format 3 stored two torques per entry, format 2 also k_n and c_n) is refused
+  // with both versions named.
   std::string bytes = one_bead_state();
-  bytes[0] = '2';  // little-endian: the version is the lowest byte
+  bytes[0] = '3';  // little-endian: the version is the lowest byte
   StateReader old(bytes);
   try {
     Simulation b(old, one_bead_table);
-    ADD_FAILURE() << "a state of format 2 was accepted";
+    ADD_FAILURE() << "a state of format 3 was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("format 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("format 4"), std::string::npos) << e.what();
   }
   bytes[7] = 'x';  // not a grainlab state at all
   StateReader foreign(bytes);

@@ -51,8 +51,8 @@ struct KernelChoice {
 struct PileResult {
   ParticleStore particles;
   std::string kernel;
-  std::vector<Vec3> springs;          // per pair entry
-  std::vector<double> normal_forces;  // per pair entry
+  std::vector<Vec3> springs;        // per pair entry
+  std::vector<PairResult> results;  // per pair entry: force, torque arm, overlap, F_n
   long touching = 0;
   long rebuilds = 0;
   long handed_back = 0;  // entries the kernel handed to the scalar law (first touch in a step)
@@ -94,7 +94,7 @@ PileResult run_pile(const char* kernel, int threads, long steps) {
   r.rebuilds = sim.rebuild_count();
   r.particles = sim.particles();
   r.springs = sim.pair_contacts().sliding_spring;
-  r.normal_forces = sim.pair_contacts().normal_force;
+  r.results = sim.pair_contacts().result;
   omp_set_num_threads(omp_get_num_procs());
   return r;
 }
@@ -110,11 +110,12 @@ void expect_identical(const PileResult& a, const PileResult& b) {
                            bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.force.data(), b.particles.force.data(), bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.torque.data(), b.particles.torque.data(), bytes));
-  // the contact histories and normal forces of the last step, entry by entry
+  // the contact histories and results of the last step, entry by entry
   ASSERT_EQ(a.springs.size(), b.springs.size());
   EXPECT_EQ(0, std::memcmp(a.springs.data(), b.springs.data(), a.springs.size() * sizeof(Vec3)));
-  EXPECT_EQ(0, std::memcmp(a.normal_forces.data(), b.normal_forces.data(),
-                           a.normal_forces.size() * sizeof(double)));
+  ASSERT_EQ(a.results.size(), b.results.size());
+  EXPECT_EQ(0,
+            std::memcmp(a.results.data(), b.results.data(), a.results.size() * sizeof(PairResult)));
 }
 
 bool cpu_has(const char* isa) {

@@ -1,0 +1,75 @@
+// Simulation::gather: the force and torque on each particle, summed from the contact stores.
+//
+// Compiled with -ffp-contract=off (src/core/CMakeLists.txt): a torque is formed here as lever ×
+// torque arm (core/contact_store.hpp), and unfused it is bit for bit the product the contact law
+// forms, whichever build; a fused multiply-add would round the lever and the sum differently.
+#include "core/simulation.hpp"
+
+namespace grainlab {
+namespace {
+
+// The sums of particles [first, end). Moments: whether the pairs carry rolling or twisting
+// moments (chosen once per call, so the loop without them tests nothing per entry).
+template <bool Moments>
+void gather_particles(ParticleStore& p, const PairContacts& c, const WallContacts& wc,
+                      const Vec3& g, bool external, long n) {
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    const double r = p.radius[i];
+    Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
+    Vec3 t;
+    // first body: the entry's force; second body: the opposite. Either way the torque of the
+    // tangential force is the body's lever times the arm.
+    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
+      const PairResult& x = c.result[e];
+      f += x.force_on_first;
+      t += contact_lever(r, x.overlap) * x.torque_arm;
+      if constexpr (Moments) t += c.moment[e];
+    }
+    for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
+      const uint32_t e = c.col_pair[k];
+      const PairResult& x = c.result[e];
+      f -= x.force_on_first;
+      t += contact_lever(r, x.overlap) * x.torque_arm;
+      if constexpr (Moments) t -= c.moment[e];
+    }
+    for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
+      f += wc.force_on_particle[e];
+      t += wc.torque_on_particle[e];
+    }
+    if (external) f += p.external_force[i];
+    p.force[i] = f;
+    p.torque[i] = t;
+  }
+}
+
+}  // namespace
+
+// Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
+// where it is second (opposite force), its wall contacts and its external force (only while
+// some particle has one, so that a run without them adds nothing, not even a zero).
+void Simulation::gather() {
+  const long n = static_cast<long>(particles_.size());
+  if (pairs_.moment.empty())
+    gather_particles<false>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
+                            n);
+  else
+    gather_particles<true>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
+                           n);
+  // Wall totals, serial in entry order (few entries; deterministic).
+  const WallContacts& wc = wall_contacts_;
+  for (Wall& w : walls_) {
+    w.force = Vec3{};
+    w.contact_stiffness = 0.0;
+    w.contact_count = 0;
+  }
+  for (size_t e = 0; e < wc.size(); ++e) {
+    if (wc.normal_stiffness[e] == 0.0) continue;
+    Wall& w = walls_[wc.wall[e]];
+    w.force -= wc.force_on_particle[e];
+    w.contact_stiffness += wc.normal_stiffness[e];
+    ++w.contact_count;
+  }
+}
+
+}  // namespace grainlab
