@@ -27,6 +27,8 @@ while [[ $# -gt 0 ]]; do
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
+# absolute: the peers run in $build/compare and read the data file from there
+build=$(realpath -m "$build")
 
 if ! command -v lmp >/dev/null; then
   echo "installing LAMMPS from Debian..." >&2
