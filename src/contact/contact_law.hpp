@@ -40,9 +40,9 @@ struct ContactResponse {
   Vec3 torque_on_b(double lever_b) const { return lever_b * torque_arm - moment; }
 };
 
-// k_n = pi E r* (Eq. 4) and c_n = 2 zeta sqrt(k_n m*) (Eq. 7 corrected) of one contact. They
-// depend only on the two bodies, so the particle-pair loop takes them from the contact store
-// (computed when the neighbour list is built) instead of evaluating them every step.
+// k_n = pi E r* (Eq. 4) and c_n = 2 zeta sqrt(k_n m*) (Eq. 7 corrected) of one contact,
+// evaluated per contact per step (storing them per entry cost 16 B each; docs/performance.md
+// sec. 13).
 inline NormalParams normal_params(const PairParams& pair, double effective_radius,
                                   double effective_mass) {
   const double k_n = pair.stiffness_per_radius * effective_radius;

@@ -1,5 +1,5 @@
 // The two force loops: particle-particle entries of the half Verlet list, and particle-wall
-// candidates. Each writes the force and torques of its contacts into the contact arrays (no
+// candidates. Each writes the result of its contacts into the contact arrays (no
 // shared accumulators); Simulation::gather sums them per particle. The optional pieces of the
 // contact law are chosen once per call through the template switches.
 #include <omp.h>
@@ -28,7 +28,7 @@ inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
   return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
 }
 
-// One entry e (row i) of the half list: writes its force, torques and history and returns
+// One entry e (row i) of the half list: writes its result (PairResult) and history and returns
 // overlap / min(r_i, r_j), 0 when the spheres do not touch. dt: the time step (for the
 // end-of-step velocity estimate); drift: the time the positions last drifted over, dt after a
 // drift and 0 when forces are evaluated on a fresh state (at construction), when no spring may
