@@ -39,7 +39,8 @@ struct alignas(64) PairResult {
 };
 static_assert(sizeof(PairResult) == 64);
 
-// The lever of a body of radius r in a contact of this overlap (contact/contact_law.hpp).
+// The lever of a body of radius r in a contact of this overlap: the distance from its centre to
+// the contact point, halfway through the overlap (the scalar pair loop and the gather use it).
 inline double contact_lever(double radius, double overlap) {
   return radius - 0.5 * overlap;
 }
@@ -60,16 +61,6 @@ struct PairContacts {
                              // the opposite); empty unless a pair has those pieces
 
   size_t size() const { return partner.size(); }
-  Vec3 torque_on_first(size_t e, double first_radius) const {
-    const PairResult& r = result[e];
-    const Vec3 t = contact_lever(first_radius, r.overlap) * r.torque_arm;
-    return moment.empty() ? t : t + moment[e];
-  }
-  Vec3 torque_on_second(size_t e, double second_radius) const {
-    const PairResult& r = result[e];
-    const Vec3 t = contact_lever(second_radius, r.overlap) * r.torque_arm;
-    return moment.empty() ? t : t - moment[e];
-  }
   template <class Io>
   void for_each_field(Io&& io) {
     io(row_start), io(partner), io(col_start), io(col_pair), io(sliding_spring), io(rolling_angle),
