@@ -129,8 +129,8 @@ static_assert(sizeof(PairResult) == pair_result_size * sizeof(double));
 double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                         const PairTable& table, PairContacts& c,
                         const std::vector<uint32_t>& owners, std::vector<double>& records,
-                        std::vector<uint32_t>& deferred, long& handed_back, double dt,
-                        double drift) {
+                        std::vector<uint32_t>& deferred, int one_material, long& handed_back,
+                        double dt, double drift) {
   const long n = static_cast<long>(p.size());
   if (deferred.size() < c.size()) deferred.resize(c.size());
   const SimdPairInput in{&p.position[0].x,
@@ -145,6 +145,7 @@ double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                          records.data(),
                          &table(0, 0),
                          table.material_count(),
+                         one_material >= 0 ? &table(one_material, one_material) : nullptr,
                          c.row_start.data(),
                          c.partner.data(),
                          owners.data(),
@@ -323,13 +324,18 @@ void Simulation::index_entry_owners() {
   }
   particle_records_.resize(particles_.size() * particle_record_size);
   entry_owners_ = row_of_each_entry(c.row_start);
+  const std::vector<int32_t>& material = particles_.material;
+  one_material_ = !material.empty() && std::all_of(material.begin(), material.end(),
+                                                   [&](int32_t m) { return m == material[0]; })
+                      ? material[0]
+                      : -1;
 }
 
 void Simulation::compute_pair_forces(double drift) {
   if (uses_pair_kernel()) {
     max_overlap_fraction_ = pair_forces_simd(
         simd_pair_kernel_, particles_, table_, pairs_, entry_owners_, particle_records_,
-        deferred_pairs_, pairs_handed_to_scalar_law_, settings_.time_step, drift);
+        deferred_pairs_, one_material_, pairs_handed_to_scalar_law_, settings_.time_step, drift);
     return;
   }
   pairs_handed_to_scalar_law_ = 0;

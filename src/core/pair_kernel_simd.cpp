@@ -27,6 +27,10 @@ constexpr int lanes = 8;
 using vd = double __attribute__((vector_size(64)));
 using vmask = long long __attribute__((vector_size(64)));  // per lane: -1 true, 0 false
 
+GRAINLAB_LANES_INLINE vd splat(double x) {  // x in every lane
+  return vd{x, x, x, x, x, x, x, x};
+}
+
 GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
 #if defined(__AVX512F__)
   return _mm512_mask_sqrt_pd(a, 0xFF, a);  // all lanes (the unmasked form warns in GCC 12)
@@ -260,14 +264,22 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
 
   // the pair's constants
   vd stiffness_per_radius, damping_ratio, rns, rzs, friction;
-  for (int l = 0; l < lanes; ++l) {
-    const PairParams& pair =
-        in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]];
-    stiffness_per_radius[l] = pair.stiffness_per_radius;
-    damping_ratio[l] = pair.damping_ratio;
-    rns[l] = pair.rns;
-    rzs[l] = pair.rzs;
-    friction[l] = pair.friction;
+  if (const PairParams* one = in.one_pair) {  // one material: the same constants in every lane
+    stiffness_per_radius = splat(one->stiffness_per_radius);
+    damping_ratio = splat(one->damping_ratio);
+    rns = splat(one->rns);
+    rzs = splat(one->rzs);
+    friction = splat(one->friction);
+  } else {
+    for (int l = 0; l < lanes; ++l) {
+      const PairParams& pair =
+          in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]];
+      stiffness_per_radius[l] = pair.stiffness_per_radius;
+      damping_ratio[l] = pair.damping_ratio;
+      rns[l] = pair.rns;
+      rzs[l] = pair.rzs;
+      friction[l] = pair.friction;
+    }
   }
   // normal_params: k_n = pi E r* and c_n = 2 zeta sqrt(k_n m*), with r* = r_i r_j / (r_i + r_j)
   // and m* = 1 / (1/m_i + 1/m_j); computed per contact rather than stored per entry (16 B per

@@ -54,6 +54,9 @@ struct SimdPairInput {
   double* particle_record;  // particle_record_size per particle: written by records, read by rows
   const PairParams* pair_params;  // material_count x material_count, row-major
   int32_t material_count;
+  // The constants of every pair when all particles are of one material (then the lanes take
+  // them by broadcast instead of one lookup per lane and value); null otherwise.
+  const PairParams* one_pair;
   const uint32_t* row_start;
   const uint32_t* partner;
   const uint32_t* owner;   // per entry: its first particle (the row it lies in)

@@ -114,7 +114,7 @@ class Simulation {
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;
-  // entry_owners_ and room for particle_records_, when the kernel runs
+  // entry_owners_, room for particle_records_ and one_material_, when the kernel runs
   void index_entry_owners();
   void compute_wall_forces(double drift);
   void gather();
@@ -142,6 +142,7 @@ class Simulation {
   std::vector<uint32_t> deferred_pairs_;
   std::vector<uint32_t> entry_owners_;    // per pair entry: its first particle (for the kernel)
   std::vector<double> particle_records_;  // the kernel's per-particle velocity records
+  int one_material_ = -1;  // the material of every particle, or -1 where they differ (kernel)
   long pairs_handed_to_scalar_law_ = 0;
   std::vector<StepListener*> listeners_;
 };
