@@ -99,15 +99,14 @@ template <bool R, bool T, bool RF>
   return k.overlap / std::min(ri, rj);
 }
 
+// The rows of particles [first, end).
 template <bool R, bool T, bool RF>
 double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts& c, double dt,
-                   double drift) {
-  const long n = static_cast<long>(p.size());
+                   double drift, long first, long end) {
   const int materials = table.material_count();
   const PairParams* params = &table(0, 0);
   double max_fraction = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
+  for (long i = first; i < end; ++i) {
     const PairParams* row_params = params + p.material[i] * materials;
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i];
@@ -118,11 +117,12 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
   return max_fraction;
 }
 
-// The reference law through the vectorised kernel (core/pair_kernel_simd.hpp). Each thread
-// takes a contiguous block of particles, as schedule(static) would: it writes their records,
-// and once every thread has (the rows read their partners' records), computes their rows and
-// runs the scalar law on the entries the kernel hands back (contacts that may have begun in this
-// step).
+// The reference law through the vectorised kernel (core/pair_kernel_simd.hpp), for the calling
+// thread's block of particles (inside Simulation::compute_forces' region; every thread of the
+// team must call it, for the barrier): it writes their records, and once every thread has (the
+// rows read their partners' records), computes their rows and runs the scalar law on the entries
+// the kernel hands back (contacts that may have begun in this step). `deferred` must have one
+// slot per entry (Simulation::prepare_pair_forces).
 // Every contact's arithmetic is the same whichever thread or lane computes it.
 static_assert(sizeof(PairResult) == pair_result_size * sizeof(double));
 
@@ -130,9 +130,7 @@ double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                         const PairTable& table, PairContacts& c,
                         const std::vector<uint32_t>& owners, std::vector<double>& records,
                         std::vector<uint32_t>& deferred, int one_material, long& handed_back,
-                        double dt, double drift) {
-  const long n = static_cast<long>(p.size());
-  if (deferred.size() < c.size()) deferred.resize(c.size());
+                        double dt, double drift, IndexBlock block) {
   const SimdPairInput in{&p.position[0].x,
                          &p.velocity[0].x,
                          &p.angular_velocity[0].x,
@@ -154,40 +152,29 @@ double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
                          dt,
                          drift};
   const int materials = table.material_count();
-  double max_fraction = 0.0;
-  long deferred_total = 0;
-#pragma omp parallel reduction(max : max_fraction) reduction(+ : deferred_total) \
-    if (n > parallel_threshold)
-  {
-    const long threads = omp_get_num_threads(), thread = omp_get_thread_num();
-    const long block = (n + threads - 1) / threads;
-    const long first = std::min(n, thread * block), end = std::min(n, first + block);
-    uint32_t* my_deferred = deferred.data() + c.row_start[first];
-    long deferred_count = 0;
-    kernel.records(in, first, end);
+  const long first = block.first, end = block.end;
+  uint32_t* my_deferred = deferred.data() + c.row_start[first];
+  long deferred_count = 0;
+  kernel.records(in, first, end);
 #pragma omp barrier
-    double m = kernel.rows(in, first, end, my_deferred, deferred_count);
-    for (long k = 0; k < deferred_count; ++k) {
-      const uint32_t e = my_deferred[k];
-      const uint32_t i = owners[e];
-      const PairParams* row_params = &table(0, 0) + p.material[i] * materials;
-      m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i],
-                                                      p.radius[i], e, dt, drift));
-    }
-    max_fraction = std::max(max_fraction, m);
-    deferred_total += deferred_count;
+  double m = kernel.rows(in, first, end, my_deferred, deferred_count);
+  for (long k = 0; k < deferred_count; ++k) {
+    const uint32_t e = my_deferred[k];
+    const uint32_t i = owners[e];
+    const PairParams* row_params = &table(0, 0) + p.material[i] * materials;
+    m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i],
+                                                    p.radius[i], e, dt, drift));
   }
-  handed_back = deferred_total;
-  return max_fraction;
+  handed_back += deferred_count;
+  return m;
 }
 
+// The wall contacts of particles [first, end).
 template <bool R, bool T, bool RF>
 double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const PairTable& table,
-                   WallContacts& c, double dt, double drift) {
-  const long n = static_cast<long>(p.size());
+                   WallContacts& c, double dt, double drift, long first, long end) {
   double max_fraction = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_fraction) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
+  for (long i = first; i < end; ++i) {
     const double r = p.radius[i];
     for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
       const Wall& w = walls[c.wall[e]];
@@ -292,15 +279,15 @@ double dispatch(ContactPieces pieces, Args&&... args) {
 template <bool R, bool T, bool RF>
 struct PairKernel {
   static double run(const ParticleStore& p, const PairTable& t, PairContacts& c, double dt,
-                    double drift) {
-    return pair_forces<R, T, RF>(p, t, c, dt, drift);
+                    double drift, IndexBlock b) {
+    return pair_forces<R, T, RF>(p, t, c, dt, drift, b.first, b.end);
   }
 };
 template <bool R, bool T, bool RF>
 struct WallKernel {
   static double run(const ParticleStore& p, const std::vector<Wall>& w, const PairTable& t,
-                    WallContacts& c, double dt, double drift) {
-    return wall_forces<R, T, RF>(p, w, t, c, dt, drift);
+                    WallContacts& c, double dt, double drift, IndexBlock b) {
+    return wall_forces<R, T, RF>(p, w, t, c, dt, drift, b.first, b.end);
   }
 };
 
@@ -331,22 +318,23 @@ void Simulation::index_entry_owners() {
                       : -1;
 }
 
-void Simulation::compute_pair_forces(double drift) {
-  if (uses_pair_kernel()) {
-    max_overlap_fraction_ = pair_forces_simd(
-        simd_pair_kernel_, particles_, table_, pairs_, entry_owners_, particle_records_,
-        deferred_pairs_, one_material_, pairs_handed_to_scalar_law_, settings_.time_step, drift);
-    return;
-  }
-  pairs_handed_to_scalar_law_ = 0;
-  max_overlap_fraction_ =
-      dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift);
+void Simulation::prepare_pair_forces() {
+  if (uses_pair_kernel() && deferred_pairs_.size() < pairs_.size())
+    deferred_pairs_.resize(pairs_.size());
 }
 
-void Simulation::compute_wall_forces(double drift) {
-  max_overlap_fraction_ = std::max(
-      max_overlap_fraction_, dispatch<WallKernel>(pieces_, particles_, walls_, table_,
-                                                  wall_contacts_, settings_.time_step, drift));
+double Simulation::compute_pair_forces(double drift, IndexBlock block, long& handed_back) {
+  if (uses_pair_kernel())
+    return pair_forces_simd(simd_pair_kernel_, particles_, table_, pairs_, entry_owners_,
+                            particle_records_, deferred_pairs_, one_material_, handed_back,
+                            settings_.time_step, drift, block);
+  return dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift,
+                              block);
+}
+
+double Simulation::compute_wall_forces(double drift, IndexBlock block) {
+  return dispatch<WallKernel>(pieces_, particles_, walls_, table_, wall_contacts_,
+                              settings_.time_step, drift, block);
 }
 
 }  // namespace grainlab

@@ -11,10 +11,9 @@ namespace {
 // The sums of particles [first, end). Moments: whether the pairs carry rolling or twisting
 // moments (chosen once per call, so the loop without them tests nothing per entry).
 template <bool Moments>
-void gather_particles(ParticleStore& p, const PairContacts& c, const WallContacts& wc,
-                      const Vec3& g, bool external, long n) {
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
+void gather_block(ParticleStore& p, const PairContacts& c, const WallContacts& wc, const Vec3& g,
+                  bool external, long first, long end) {
+  for (long i = first; i < end; ++i) {
     const double r = p.radius[i];
     Vec3 f = p.inverse_mass[i] > 0.0 ? (1.0 / p.inverse_mass[i]) * g : Vec3{};
     Vec3 t;
@@ -45,18 +44,20 @@ void gather_particles(ParticleStore& p, const PairContacts& c, const WallContact
 
 }  // namespace
 
-// Sums, per particle and in a fixed order, gravity, the entries where it is first, the entries
-// where it is second (opposite force), its wall contacts and its external force (only while
-// some particle has one, so that a run without them adds nothing, not even a zero).
-void Simulation::gather() {
-  const long n = static_cast<long>(particles_.size());
+// Sums, per particle of the block and in a fixed order, gravity, the entries where it is first,
+// the entries where it is second (opposite force), its wall contacts and its external force
+// (only while some particle has one, so that a run without them adds nothing, not even a zero).
+void Simulation::gather_particles(IndexBlock b) {
   if (pairs_.moment.empty())
-    gather_particles<false>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
-                            n);
+    gather_block<false>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
+                        b.first, b.end);
   else
-    gather_particles<true>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
-                           n);
-  // Wall totals, serial in entry order (few entries; deterministic).
+    gather_block<true>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
+                       b.first, b.end);
+}
+
+// Wall totals, serial in entry order (few entries; deterministic).
+void Simulation::gather_walls() {
   const WallContacts& wc = wall_contacts_;
   for (Wall& w : walls_) {
     w.force = Vec3{};

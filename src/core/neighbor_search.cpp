@@ -6,17 +6,21 @@
 
 namespace grainlab {
 
-bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
-  if (position_at_build_.size() != p.size() || wall_pose_at_build_.size() != walls.size())
-    return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+bool NeighborSearch::walls_and_count_allow(size_t particle_count,
+                                           const std::vector<Wall>& walls) const {
+  if (position_at_build_.size() != particle_count || wall_pose_at_build_.size() != walls.size())
+    return false;
   for (size_t w = 0; w < walls.size(); ++w)
-    if (surface_displacement(wall_pose_at_build_[w], walls[w]) > 0.5 * skin_) return true;
+    if (surface_displacement(wall_pose_at_build_[w], walls[w]) > 0.5 * skin_) return false;
+  return true;
+}
+
+bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wall>& walls) const {
+  if (!walls_and_count_allow(p.size(), walls)) return true;
   const long n = static_cast<long>(p.size());
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i)
-    moved |= norm2(p.position[i] - position_at_build_[i]) > limit2 ? 1 : 0;
+  for (long i = 0; i < n; ++i) moved |= moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
   return moved != 0;
 }
 

@@ -32,6 +32,17 @@ class NeighborSearch {
   explicit NeighborSearch(double skin) : skin_(skin) {}
 
   bool needs_rebuild(const ParticleStore& particles, const std::vector<Wall>& walls) const;
+  // The parts of needs_rebuild, for a caller that checks the particles inside its own loop
+  // (Simulation::kick_and_drift): whether the list was built for these particles and walls and
+  // no wall has moved a half skin; whether it was built for this many particles; then whether
+  // particle i at x has moved more than a half skin.
+  bool walls_and_count_allow(size_t particle_count, const std::vector<Wall>& walls) const;
+  bool built_for(size_t particle_count) const {
+    return position_at_build_.size() == particle_count;
+  }
+  bool moved_beyond_half_skin(size_t i, const Vec3& x) const {
+    return norm2(x - position_at_build_[i]) > 0.25 * skin_ * skin_;
+  }
 
   void rebuild(ParticleStore& particles, const std::vector<Wall>& walls, PairContacts& pairs,
                WallContacts& wall_contacts, ContactPieces pieces);

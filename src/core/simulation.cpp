@@ -18,7 +18,7 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time step must be > 0");
   if (!(settings_.skin > 0.0)) throw std::invalid_argument("Verlet skin must be > 0");
   rebuild_neighbors();
-  compute_forces(0.0);
+  compute_forces(0.0, false);
 }
 
 void Simulation::rebuild_neighbors() {
@@ -29,13 +29,11 @@ void Simulation::rebuild_neighbors() {
 
 void Simulation::step() {
   for (StepListener* l : listeners_) l->before_step(*this);
-  kick_and_drift();
-  if (neighbors_.needs_rebuild(particles_, walls_)) {
+  if (kick_and_drift()) {
     rebuild_neighbors();
     for (StepListener* l : listeners_) l->after_rebuild(*this);
   }
-  compute_forces(settings_.time_step);
-  half_kick();
+  compute_forces(settings_.time_step, true);
   time_ += settings_.time_step;
   ++step_count_;
   check_health();
@@ -50,37 +48,48 @@ void Simulation::scale_positions(const Vec3& centre, double factor) {
 }
 
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
-void Simulation::kick_and_drift() {
+// Returns whether the neighbour list must be rebuilt: the check of each particle's displacement
+// since the last rebuild is made in the same loop (one parallel region, not two).
+bool Simulation::kick_and_drift() {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  // (the list's positions are only looked at when it was built for this many particles)
+  const bool check_particles = neighbors_.built_for(p.size());
+  int moved = 0;
+#pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
     p.position[i] += dt * p.velocity[i];
     p.rotation[i] += dt * p.angular_velocity[i];
+    if (check_particles) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
   }
   for (Wall& w : walls_) {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
     w.point += dt * w.velocity;
   }
+  return moved != 0 || !neighbors_.walls_and_count_allow(p.size(), walls_);
 }
 
-void Simulation::half_kick() {
+// Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:
+// v(t + dt) = v(t + dt/2) + dt/2 F/m. Returns the largest speed squared (NaN as infinite).
+double Simulation::half_kick_particles(IndexBlock b) {
   const double half = 0.5 * settings_.time_step;
   ParticleStore& p = particles_;
-  const long n = static_cast<long>(p.size());
   double max_speed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_speed2) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
+  for (long i = b.first; i < b.end; ++i) {
     p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
     const double v2 = norm2(p.velocity[i]);
     // NaN compares false: a NaN speed is recorded as infinite.
     max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
   }
-  max_speed2_ = max_speed2;
+  return max_speed2;
+}
+
+void Simulation::half_kick_walls() {
+  const double half = 0.5 * settings_.time_step;
   for (Wall& w : walls_)
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
 }
@@ -106,11 +115,34 @@ void Simulation::set_pair_table(PairTable table) {
 }
 
 // The force sources, in the order they are summed: pair contacts, wall contacts, then (in
-// gather) gravity and the per-particle external forces.
-void Simulation::compute_forces(double drift) {
-  compute_pair_forces(drift);
-  compute_wall_forces(drift);
-  gather();
+// gather) gravity and the per-particle external forces; then, closing a step, the second half
+// kick. One parallel region: each thread computes the contacts of its block of particles (the
+// pair rows where they are first, their wall contacts), and after a barrier (a particle's sum
+// reads entries other threads wrote) sums its particles' forces and kicks them. The pair kernel
+// adds one barrier of its own (core/contact_forces.cpp). Every sum and every contact is the
+// same arithmetic whatever the thread count.
+void Simulation::compute_forces(double drift, bool close_step) {
+  const long n = static_cast<long>(particles_.size());
+  prepare_pair_forces();
+  double max_fraction = 0.0, max_speed2 = 0.0;
+  long handed_back = 0;
+#pragma omp parallel reduction(max : max_fraction, max_speed2) reduction(+ : handed_back) \
+    if (n > parallel_threshold)
+  {
+    const IndexBlock block = thread_block(n);
+    max_fraction = std::max(compute_pair_forces(drift, block, handed_back),
+                            compute_wall_forces(drift, block));
+#pragma omp barrier
+    gather_particles(block);
+    if (close_step) max_speed2 = half_kick_particles(block);
+  }
+  max_overlap_fraction_ = max_fraction;
+  pairs_handed_to_scalar_law_ = handed_back;
+  gather_walls();
+  if (close_step) {
+    max_speed2_ = max_speed2;
+    half_kick_walls();
+  }
 }
 
 const char* Simulation::step_key() const {

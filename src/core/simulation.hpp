@@ -16,6 +16,7 @@
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
+#include "core/thread_block.hpp"
 #include "geometry/wall.hpp"
 
 namespace grainlab {
@@ -104,20 +105,27 @@ class Simulation {
   long pairs_handed_to_scalar_law() const { return pairs_handed_to_scalar_law_; }
 
  private:
-  void kick_and_drift();
-  void half_kick();
+  bool kick_and_drift();  // true: the neighbour list must be rebuilt
   // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
-  // the first evaluation of a fresh state, when no contact spring may advance).
-  void compute_forces(double drift);
-  void compute_pair_forces(double drift);
+  // the first evaluation of a fresh state, when no contact spring may advance). close_step: end
+  // with the second half kick.
+  void compute_forces(double drift, bool close_step);
+  // The stages of compute_forces, each on the calling thread's block of particles inside its
+  // parallel region (the *_walls ones serial after it). compute_pair_forces may hold a barrier:
+  // every thread of the team must call it.
+  void prepare_pair_forces();  // serial, before the region
+  double compute_pair_forces(double drift, IndexBlock block, long& handed_back);
+  double compute_wall_forces(double drift, IndexBlock block);
+  void gather_particles(IndexBlock block);
+  void gather_walls();
+  double half_kick_particles(IndexBlock block);
+  void half_kick_walls();
   void rebuild_neighbors();
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;
   // entry_owners_, room for particle_records_ and one_material_, when the kernel runs
   void index_entry_owners();
-  void compute_wall_forces(double drift);
-  void gather();
   void check_health() const;
   void check_restored_state() const;  // after loading a checkpoint; std::runtime_error
   const char* step_key() const;       // the config key of the time step, for advice
