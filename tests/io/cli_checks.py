@@ -724,6 +724,27 @@ def scene_checkpoint_survives_kill():
         print("scene resumed bit-identically after SIGKILL;", err.strip())
 
 
+@check
+def barrier_spin_is_bounded():
+    """OpenMP threads waiting at a barrier spin 1,000 rounds, not GCC's 300,000 (which collapse a
+    run when another process holds a core; docs/performance.md sec. 15); a user's own
+    GOMP_SPINCOUNT or OMP_WAIT_POLICY is kept. OMP_DISPLAY_ENV makes the runtime print its
+    settings each time it starts: the last print is what the run uses."""
+    def spin_counts(**extra):
+        env = {k: v for k, v in os.environ.items() if k not in ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT")}
+        env.update(OMP_DISPLAY_ENV="verbose", **extra)
+        r = subprocess.run([EXE, "--version"], capture_output=True, text=True, env=env, timeout=60)
+        assert r.returncode == 0 and "grainlab" in r.stdout, (r.returncode, r.stdout, r.stderr)
+        return re.findall(r"GOMP_SPINCOUNT = '(\d+)'", r.stdout + r.stderr)
+    got = spin_counts()
+    assert got and got[-1] == "1000", got
+    got = spin_counts(GOMP_SPINCOUNT="77")
+    assert got == ["77"], got
+    got = spin_counts(OMP_WAIT_POLICY="active")
+    assert len(got) == 1 and got[0] != "1000", got
+    print("barrier spin:", spin_counts())
+
+
 if __name__ == "__main__":
     CHECKS[sys.argv[2]]()
     print("ok:", sys.argv[2])
