@@ -1,6 +1,5 @@
 // grainlab: a virtual granular laboratory (DEM). See README.md and docs/.
 #include <fmt/format.h>
-
 #include <unistd.h>
 
 #include <cstdlib>

@@ -162,8 +162,8 @@ double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
     const uint32_t e = my_deferred[k];
     const uint32_t i = owners[e];
     const PairParams* row_params = &table(0, 0) + p.material[i] * materials;
-    m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i],
-                                                    p.radius[i], e, dt, drift));
+    m = std::max(m, pair_entry<false, false, false>(p, row_params, c, i, p.position[i], p.radius[i],
+                                                    e, dt, drift));
   }
   handed_back += deferred_count;
   return m;

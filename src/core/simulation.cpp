@@ -130,8 +130,8 @@ void Simulation::compute_forces(double drift, bool close_step) {
     if (n > parallel_threshold)
   {
     const IndexBlock block = thread_block(n);
-    max_fraction = std::max(compute_pair_forces(drift, block, handed_back),
-                            compute_wall_forces(drift, block));
+    max_fraction =
+        std::max(compute_pair_forces(drift, block, handed_back), compute_wall_forces(drift, block));
 #pragma omp barrier
     gather_particles(block);
     if (close_step) max_speed2 = half_kick_particles(block);
