@@ -17,6 +17,7 @@
 #include "io/config_error.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_files.hpp"
+#include "io/output_manifest.hpp"
 #include "io/scene_builder.hpp"
 #include "io/summary_header.hpp"
 #include "lab/lab_config.hpp"
@@ -290,6 +291,9 @@ void run_loading(ElementRun& run, LoadingStage& stage, const std::string& dir,
                  double checkpoint_interval_s, Progress& progress) {
   // The interrupt flag is looked at every step, the wall clock every 1000.
   CheckpointClock clock(checkpoint_interval_s, 1000);
+  // The curve is written as curve.csv.partial and renamed at the end: the manifest lists its
+  // final name (--overwrite removes it with its .partial sibling).
+  record_output(dir + "/curve.csv");
   auto write_curve = [&] {
     write_file_atomically(dir + "/curve.csv.partial",
                           std::string(stage.curve_header()) + "\n" + run.curve_rows);

@@ -180,6 +180,24 @@ def triaxial_interrupt_and_resume():
         compare_runs(a, b)
 
 
+def element_test_rerun_with_overwrite():
+    """A finished element test's directory takes a rerun with --overwrite: its manifest lists the
+    results under their final names (curve.csv is written as curve.csv.partial and renamed at
+    the end), so the rerun replaces them instead of refusing curve.csv as a user's file."""
+    with tempfile.TemporaryDirectory() as d:
+        path = prepared_tiny(d)
+        out = os.path.join(d, "out")
+        assert run("run", path, "--out", out, "--quiet", "--threads", "1").returncode == 0
+        listed = open(os.path.join(out, ".grainlab-outputs")).read().split()
+        for name in ("curve.csv", "curve.png", "summary.json"):
+            assert name in listed, (name, listed)
+        first = open(os.path.join(out, "curve.csv")).read()
+        r = run("run", path, "--out", out, "--overwrite", "--quiet", "--threads", "1")
+        assert r.returncode == 0, r.stderr
+        assert open(os.path.join(out, "curve.csv")).read() == first, "the rerun gives the same curve"
+        assert not any(n.endswith((".partial", ".tmp")) for n in os.listdir(out)), os.listdir(out)
+
+
 def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin", linger=0.3):
     """Runs `path` twice: once through, once killed (SIGKILL) `linger` s after its first periodic
     `checkpoint` file appeared and resumed; both must give the same curve and summary, and the
