@@ -117,47 +117,47 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
   return max_fraction;
 }
 
-// The reference law through the vectorised kernel (core/pair_kernel_simd.hpp), for the calling
-// thread's block of particles (inside Simulation::compute_forces' region; every thread of the
-// team must call it, for the barrier): it writes their records, and once every thread has (the
-// rows read their partners' records), computes their rows and runs the scalar law on the entries
-// the kernel hands back (contacts that may have begun in this step). `deferred` must have one
-// slot per entry (Simulation::prepare_pair_forces).
+// The reference law through the vectorised kernel (core/pair_kernel_simd.hpp) for the rows of
+// particles [block.first, block.end): computes them and runs the scalar law on the entries the
+// kernel hands back (contacts that may have begun in this step). Every particle's record must
+// have been written (Simulation::write_particle_records, then a barrier): the rows read their
+// partners' records. `deferred` must have one slot per entry (Simulation::prepare_pair_forces).
 // Every contact's arithmetic is the same whichever thread or lane computes it.
 static_assert(sizeof(PairResult) == pair_result_size * sizeof(double));
 
-double pair_forces_simd(const SimdPairKernel& kernel, const ParticleStore& p,
-                        const PairTable& table, PairContacts& c,
-                        const std::vector<uint32_t>& owners, std::vector<double>& records,
-                        std::vector<uint32_t>& deferred, int one_material, long& handed_back,
-                        double dt, double drift, IndexBlock block) {
-  const SimdPairInput in{&p.position[0].x,
-                         &p.velocity[0].x,
-                         &p.angular_velocity[0].x,
-                         &p.force[0].x,
-                         &p.torque[0].x,
-                         p.radius.data(),
-                         p.inverse_mass.data(),
-                         p.inverse_inertia.data(),
-                         p.material.data(),
-                         records.data(),
-                         &table(0, 0),
-                         table.material_count(),
-                         one_material >= 0 ? &table(one_material, one_material) : nullptr,
-                         c.row_start.data(),
-                         c.partner.data(),
-                         owners.data(),
-                         &c.sliding_spring[0].x,
-                         &c.result[0].force_on_first.x,
-                         dt,
-                         drift};
+SimdPairInput simd_pair_input(const ParticleStore& p, const PairTable& table, PairContacts& c,
+                              const std::vector<uint32_t>& owners, std::vector<double>& records,
+                              int one_material, double dt, double drift) {
+  return SimdPairInput{&p.position[0].x,
+                       &p.velocity[0].x,
+                       &p.angular_velocity[0].x,
+                       &p.force[0].x,
+                       &p.torque[0].x,
+                       p.radius.data(),
+                       p.inverse_mass.data(),
+                       p.inverse_inertia.data(),
+                       p.material.data(),
+                       records.data(),
+                       &table(0, 0),
+                       table.material_count(),
+                       one_material >= 0 ? &table(one_material, one_material) : nullptr,
+                       c.row_start.data(),
+                       c.partner.data(),
+                       owners.data(),
+                       &c.sliding_spring[0].x,
+                       &c.result[0].force_on_first.x,
+                       dt,
+                       drift};
+}
+
+double pair_forces_simd(const SimdPairKernel& kernel, const SimdPairInput& in,
+                        const ParticleStore& p, const PairTable& table, PairContacts& c,
+                        const std::vector<uint32_t>& owners, std::vector<uint32_t>& deferred,
+                        long& handed_back, double dt, double drift, IndexBlock block) {
   const int materials = table.material_count();
-  const long first = block.first, end = block.end;
-  uint32_t* my_deferred = deferred.data() + c.row_start[first];
+  uint32_t* my_deferred = deferred.data() + c.row_start[block.first];
   long deferred_count = 0;
-  kernel.records(in, first, end);
-#pragma omp barrier
-  double m = kernel.rows(in, first, end, my_deferred, deferred_count);
+  double m = kernel.rows(in, block.first, block.end, my_deferred, deferred_count);
   for (long k = 0; k < deferred_count; ++k) {
     const uint32_t e = my_deferred[k];
     const uint32_t i = owners[e];
@@ -323,11 +323,21 @@ void Simulation::prepare_pair_forces() {
     deferred_pairs_.resize(pairs_.size());
 }
 
+void Simulation::write_particle_records(double drift, IndexBlock block) {
+  const SimdPairInput in =
+      simd_pair_input(particles_, table_, pairs_, entry_owners_, particle_records_, one_material_,
+                      settings_.time_step, drift);
+  simd_pair_kernel_.records(in, block.first, block.end);
+}
+
 double Simulation::compute_pair_forces(double drift, IndexBlock block, long& handed_back) {
-  if (uses_pair_kernel())
-    return pair_forces_simd(simd_pair_kernel_, particles_, table_, pairs_, entry_owners_,
-                            particle_records_, deferred_pairs_, one_material_, handed_back,
-                            settings_.time_step, drift, block);
+  if (uses_pair_kernel()) {
+    const SimdPairInput in =
+        simd_pair_input(particles_, table_, pairs_, entry_owners_, particle_records_, one_material_,
+                        settings_.time_step, drift);
+    return pair_forces_simd(simd_pair_kernel_, in, particles_, table_, pairs_, entry_owners_,
+                            deferred_pairs_, handed_back, settings_.time_step, drift, block);
+  }
   return dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift,
                               block);
 }

@@ -124,17 +124,36 @@ void Simulation::set_pair_table(PairTable table) {
 void Simulation::compute_forces(double drift, bool close_step) {
   const long n = static_cast<long>(particles_.size());
   prepare_pair_forces();
+  const bool parallel = n > parallel_threshold;
+  const int team = parallel ? omp_get_max_threads() : 1;
+  const long chunk = stage_chunk(n, team);
+  const bool records = uses_pair_kernel();
+  if (records) record_chunks_.plan(n, team, chunk);
+  contact_chunks_.plan(n, team, chunk);
+  particle_chunks_.plan(n, team, chunk);
   double max_fraction = 0.0, max_speed2 = 0.0;
   long handed_back = 0;
+  // One region, three stages, a barrier after each of the first two: the pair rows read every
+  // particle's record, the gather reads every entry's result. Each stage shares its chunks
+  // (core/chunk_queue.hpp).
 #pragma omp parallel reduction(max : max_fraction, max_speed2) reduction(+ : handed_back) \
-    if (n > parallel_threshold)
+    if (parallel)
   {
-    const IndexBlock block = thread_block(n);
-    max_fraction =
-        std::max(compute_pair_forces(drift, block, handed_back), compute_wall_forces(drift, block));
+    if (records) {
+      record_chunks_.drain([&](long first, long end) {
+        write_particle_records(drift, {first, end});
+      });
 #pragma omp barrier
-    gather_particles(block);
-    if (close_step) max_speed2 = half_kick_particles(block);
+    }
+    contact_chunks_.drain([&](long first, long end) {
+      max_fraction = std::max({max_fraction, compute_pair_forces(drift, {first, end}, handed_back),
+                               compute_wall_forces(drift, {first, end})});
+    });
+#pragma omp barrier
+    particle_chunks_.drain([&](long first, long end) {
+      gather_particles({first, end});
+      if (close_step) max_speed2 = std::max(max_speed2, half_kick_particles({first, end}));
+    });
   }
   max_overlap_fraction_ = max_fraction;
   pairs_handed_to_scalar_law_ = handed_back;

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "contact/pair_table.hpp"
+#include "core/chunk_queue.hpp"
 #include "core/contact_store.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/pair_kernel_simd.hpp"
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
-#include "core/thread_block.hpp"
 #include "geometry/wall.hpp"
 
 namespace grainlab {
@@ -110,10 +110,12 @@ class Simulation {
   // the first evaluation of a fresh state, when no contact spring may advance). close_step: end
   // with the second half kick.
   void compute_forces(double drift, bool close_step);
-  // The stages of compute_forces, each on the calling thread's block of particles inside its
-  // parallel region (the *_walls ones serial after it). compute_pair_forces may hold a barrier:
-  // every thread of the team must call it.
+  // The stages of compute_forces, each on a chunk of particles taken by the calling thread inside
+  // its parallel region (the *_walls ones serial after it).
   void prepare_pair_forces();  // serial, before the region
+  // the kernel's velocity records (only when uses_pair_kernel()); the rows read them after a
+  // barrier
+  void write_particle_records(double drift, IndexBlock block);
   double compute_pair_forces(double drift, IndexBlock block, long& handed_back);
   double compute_wall_forces(double drift, IndexBlock block);
   void gather_particles(IndexBlock block);
@@ -152,6 +154,9 @@ class Simulation {
   std::vector<double> particle_records_;  // the kernel's per-particle velocity records
   int one_material_ = -1;  // the material of every particle, or -1 where they differ (kernel)
   long pairs_handed_to_scalar_law_ = 0;
+  // Who takes which particles in compute_forces' three stages (records; pair rows and wall
+  // contacts; gather and half kick): planned afresh at each call.
+  ChunkQueue record_chunks_, contact_chunks_, particle_chunks_;
   std::vector<StepListener*> listeners_;
 };
 

@@ -1,9 +1,10 @@
 // The share of a per-particle loop that one thread of an OpenMP team takes: a contiguous block of
-// [0, n), the partition schedule(static) makes. The step's stages run as such blocks inside one
-// parallel region (Simulation::compute_forces), separated by barriers where one stage reads what
-// another thread wrote, instead of one region per stage: each region costs a fork and a join,
-// and with sleeping (passive) threads each of those is a wake-up of a few tens of microseconds
-// on a VM (docs/performance.md sec. 15).
+// [0, n), the partition schedule(static) makes. The stages of a step's force region start from
+// these blocks and share what is left of them (core/chunk_queue.hpp); they run inside one
+// parallel region, separated by barriers where one stage reads what another thread wrote, instead
+// of one region per stage: each region costs a fork and a join, and with sleeping (passive)
+// threads each of those is a wake-up of a few tens of microseconds on a VM (docs/performance.md
+// sec. 15).
 #pragma once
 
 #include <omp.h>

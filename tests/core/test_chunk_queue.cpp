@@ -1,0 +1,96 @@
+// The work sharing of the step's stages (core/chunk_queue.hpp): every index of [0, n) is handed
+// out exactly once, in chunks that never cross a thread's block; a thread that is late finds its
+// block done by the others; a team other than the planned one still covers [0, n) once.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "core/chunk_queue.hpp"
+
+using namespace grainlab;
+
+namespace {
+
+struct Coverage {
+  std::vector<int> times_taken;        // per index
+  std::vector<int> taken_by;           // per index: the thread that took it
+  std::vector<long> chunks_of_thread;  // per thread
+  bool chunk_crossed_a_block = false, chunk_too_long = false;
+};
+
+// Drains a queue planned for `planned` threads on a team of `team`; `late` (>= 0) is a thread
+// that starts `delay` after the others.
+Coverage drain(long n, int planned, int team, long chunk, int late = -1,
+               std::chrono::milliseconds delay = {}) {
+  ChunkQueue q;
+  q.plan(n, planned, chunk);
+  Coverage c;
+  c.times_taken.assign(n, 0);
+  c.taken_by.assign(n, -1);
+  c.chunks_of_thread.assign(team, 0);
+  const long block = planned > 0 ? (n + planned - 1) / planned : n;
+  std::atomic<bool> crossed{false}, too_long{false};
+#pragma omp parallel num_threads(team)
+  {
+    const int me = omp_get_thread_num();
+    if (me == late) std::this_thread::sleep_for(delay);
+    q.drain([&](long first, long end) {
+      ++c.chunks_of_thread[me];
+      if (team == planned) {
+        if (end - first > chunk) too_long = true;
+        if (first / block != (end - 1) / block) crossed = true;
+      }
+      for (long i = first; i < end; ++i) {
+#pragma omp atomic
+        ++c.times_taken[i];
+        c.taken_by[i] = me;
+      }
+    });
+  }
+  c.chunk_crossed_a_block = crossed;
+  c.chunk_too_long = too_long;
+  return c;
+}
+
+}  // namespace
+
+TEST(ChunkQueue, EveryIndexIsTakenExactlyOnce) {
+  for (long n : {0L, 1L, 7L, 1000L, 12345L})
+    for (int team : {1, 2, 3, 4, 8})
+      for (long chunk : {1L, 64L, stage_chunk(n, team)}) {
+        SCOPED_TRACE(testing::Message() << "n " << n << " team " << team << " chunk " << chunk);
+        const Coverage c = drain(n, team, team, chunk);
+        for (long i = 0; i < n; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
+        EXPECT_FALSE(c.chunk_crossed_a_block);
+        EXPECT_FALSE(c.chunk_too_long);
+      }
+}
+
+TEST(ChunkQueue, ALateThreadFindsItsBlockTakenByTheOthers) {
+  // Thread 1 starts 200 ms late; thread 0 has taken all of both blocks long before.
+  const long n = 4000;
+  const Coverage c = drain(n, 2, 2, 64, 1, std::chrono::milliseconds(200));
+  for (long i = 0; i < n; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
+  long by_first = 0;
+  for (long i = n / 2; i < n; ++i) by_first += c.taken_by[i] == 0;
+  EXPECT_GT(by_first, n / 4) << "thread 0 should have taken most of thread 1's block";
+}
+
+TEST(ChunkQueue, ATeamOtherThanPlannedStillCoversEveryIndexOnce) {
+  for (int team : {1, 2, 3}) {
+    const Coverage c = drain(1000, 4, team, 64);
+    for (long i = 0; i < 1000; ++i)
+      ASSERT_EQ(c.times_taken[i], 1) << "team " << team << " index " << i;
+  }
+}
+
+TEST(ChunkQueue, ChunkSizeGivesEachThreadSeveralChunks) {
+  EXPECT_EQ(stage_chunk(11636, 1), 11636);    // one thread: its block in one piece
+  EXPECT_EQ(stage_chunk(11636, 2), 727);      // 8 per thread
+  EXPECT_EQ(stage_chunk(1000, 16), 64);       // never below 64
+  EXPECT_EQ(stage_chunk(1000000, 16), 1024);  // never above 1,024
+}
