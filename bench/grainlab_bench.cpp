@@ -1,8 +1,9 @@
-// grainlab_bench: runs a named workload for 1 and 2 threads and prints particle-steps per
+// grainlab_bench: runs a named workload for 1, 2, 4 ... threads and prints particle-steps per
 // second, neighbour-list rebuilds, mean contacts per particle and peak RSS; appends one row per
 // run to bench/results/<hostname>.csv. Workloads: see bench/scenes.hpp.
 //
-//   grainlab_bench dense-11k                       (default: 1 and 2 threads, 3 repetitions)
+//   grainlab_bench dense-11k                       (default: 1, 2, 4 ... threads up to the
+//                                                   processor count, 3 repetitions)
 //   grainlab_bench dense-11k --threads 2 --reps 1 --steps 4000
 //   grainlab_bench dense-11k --tile 4x4x4           (64 copies side by side: 745k beads)
 //   grainlab_bench dense-11k --write-lammps-data out.data   (same packing for the peer codes)
@@ -108,7 +109,10 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
 int main(int argc, char** argv) {
   CLI::App app{"grainlab benchmark runner"};
   std::string workload = "dense-11k";
-  std::vector<int> threads{1, 2};
+  // 1, 2, 4, ... threads up to the machine's processor count, and the count itself
+  std::vector<int> threads;
+  for (int t = 1; t <= omp_get_num_procs(); t *= 2) threads.push_back(t);
+  if (threads.back() != omp_get_num_procs()) threads.push_back(omp_get_num_procs());
   int reps = 3;
   long steps = 0, warmup = 200;
   std::string cache_dir = "bench-cache";
@@ -117,7 +121,9 @@ int main(int argc, char** argv) {
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false;
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
-  app.add_option("--threads", threads, "thread counts to run")->delimiter(',');
+  app.add_option("--threads", threads,
+                 "thread counts to run (default: 1, 2, 4, ... up to the processor count)")
+      ->delimiter(',');
   app.add_option("--reps", reps, "repetitions per thread count");
   app.add_option("--steps", steps, "timed steps per run (default: ~2.5e7 particle-steps)");
   app.add_option("--warmup", warmup, "untimed steps before each run");

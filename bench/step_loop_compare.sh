@@ -4,7 +4,8 @@
 # Prints every run's particle-steps/s and state hash (equal hashes: bit-identical results), then
 # per thread count the median of each and the median of the per-round ratios A/B. With
 # BUSY=1 a busy loop holds one core for the whole measurement (a machine shared with another
-# process).
+# process). TILE=NXxNYxNZ runs mirrored tiles of the workload (grainlab_bench --tile);
+# WARMUP sets the untimed steps before each run (default 200).
 #   bench/step_loop_compare.sh A_BENCH B_BENCH [WORKLOAD] [ROUNDS] [STEPS] [THREADS...]
 #   e.g. bench/step_loop_compare.sh build/release/bench/grainlab_bench /tmp/old_bench dense-11k 5 2000 1 2
 set -euo pipefail
@@ -16,8 +17,8 @@ busy_pid=
 if [ "${BUSY:-0}" = 1 ]; then (while :; do :; done) & busy_pid=$!; fi
 trap '[ -n "$busy_pid" ] && kill $busy_pid 2>/dev/null || true' EXIT
 one() {  # one BINARY THREADS -> "p-steps/s hash"
-  "$1" "$workload" --threads "$2" --reps 1 --steps "$steps" --warmup 200 --cache-dir "$cache" \
-      --results-dir "${RESULTS_DIR:-build/bench-results}" 2>/dev/null |
+  "$1" "$workload" ${TILE:+--tile "$TILE"} --threads "$2" --reps 1 --steps "$steps" \
+      --warmup "${WARMUP:-200}" --cache-dir "$cache" --results-dir "${RESULTS_DIR:-build/bench-results}" 2>/dev/null |
     awk '$1 ~ /^[0-9]+$/ && NF >= 9 {print $3, $9}'
 }
 for t in "${threads[@]}"; do
