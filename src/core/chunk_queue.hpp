@@ -40,10 +40,9 @@ class ChunkQueue {
     }
     n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
     for (int t = 0; t < team; ++t) {
-      const long block = (n + team - 1) / team;
-      const long first = std::min(n, t * block);
-      cursors_[t].next.store(first, std::memory_order_relaxed);
-      cursors_[t].end = std::min(n, first + block);
+      const IndexBlock b = block_of(n, team, t);
+      cursors_[t].next.store(b.first, std::memory_order_relaxed);
+      cursors_[t].end = b.end;
     }
   }
 

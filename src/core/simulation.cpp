@@ -116,11 +116,8 @@ void Simulation::set_pair_table(PairTable table) {
 
 // The force sources, in the order they are summed: pair contacts, wall contacts, then (in
 // gather) gravity and the per-particle external forces; then, closing a step, the second half
-// kick. One parallel region: each thread computes the contacts of its block of particles (the
-// pair rows where they are first, their wall contacts), and after a barrier (a particle's sum
-// reads entries other threads wrote) sums its particles' forces and kicks them. The pair kernel
-// adds one barrier of its own (core/contact_forces.cpp). Every sum and every contact is the
-// same arithmetic whatever the thread count.
+// kick. Every sum and every contact is the same arithmetic whatever the thread count and
+// whichever thread takes it.
 void Simulation::compute_forces(double drift, bool close_step) {
   const long n = static_cast<long>(particles_.size());
   prepare_pair_forces();

@@ -17,12 +17,16 @@ struct IndexBlock {
   long first = 0, end = 0;
 };
 
-// The calling thread's block of [0, n); outside a parallel region the whole range.
-inline IndexBlock thread_block(long n) {
-  const long threads = omp_get_num_threads(), thread = omp_get_thread_num();
+// Block `thread` of [0, n) cut into `threads` contiguous blocks.
+inline IndexBlock block_of(long n, long threads, long thread) {
   const long block = (n + threads - 1) / threads;
   const long first = std::min(n, thread * block);
   return {first, std::min(n, first + block)};
+}
+
+// The calling thread's block of [0, n); outside a parallel region the whole range.
+inline IndexBlock thread_block(long n) {
+  return block_of(n, omp_get_num_threads(), omp_get_thread_num());
 }
 
 }  // namespace grainlab
