@@ -1,7 +1,7 @@
-// The two force loops: particle-particle entries of the half Verlet list, and particle-wall
-// candidates. Each writes the result of its contacts into the contact arrays (no
-// shared accumulators); Simulation::gather sums them per particle. The optional pieces of the
-// contact law are chosen once per call through the template switches.
+// The particle-pair force loop over the entries of the half Verlet list (the wall candidates:
+// core/wall_forces.cpp). Each entry writes its result into the contact arrays (no shared
+// accumulators); Simulation::gather sums them per particle. The optional pieces of the contact
+// law are chosen once per call through the template switches.
 #include <omp.h>
 
 #include <algorithm>
@@ -9,24 +9,15 @@
 #include <cstdint>
 
 #include "contact/contact_law.hpp"
+#include "core/force_loop.hpp"
 #include "core/simulation.hpp"
 
 namespace grainlab {
 namespace {
 
-// Velocities for the dashpots. Velocity Verlet evaluates forces at the end of the step, when
-// only the half-step velocity v(t + dt/2) is known; a dashpot fed with it lags by half a step,
-// which is a first-order error in the dissipation (at dt = 0.1 t_c a single collision with
-// e = 0.5 rebounds with 0.46). Completing the kick with the last force,
-// v(t + dt) ~ v(t + dt/2) + dt/2 F(t)/m, makes it second order (docs/contact-model.md).
-// The springs instead advance by dt v(t + dt/2), the displacement the drift actually made
-// (contact/kinematics.hpp).
-inline Vec3 velocity_at_step_end(const ParticleStore& p, size_t i, double dt) {
-  return p.velocity[i] + (0.5 * dt * p.inverse_mass[i]) * p.force[i];
-}
-inline Vec3 spin_at_step_end(const ParticleStore& p, size_t i, double dt) {
-  return p.angular_velocity[i] + (0.5 * dt * p.inverse_inertia[i]) * p.torque[i];
-}
+using force_loop::dispatch;
+using force_loop::spin_at_step_end;
+using force_loop::velocity_at_step_end;
 
 // One entry e (row i) of the half list: writes its result (PairResult) and history and returns
 // overlap / min(r_i, r_j), 0 when the spheres do not touch. dt: the time step (for the
@@ -125,31 +116,6 @@ double pair_forces(const ParticleStore& p, const PairTable& table, PairContacts&
 // Every contact's arithmetic is the same whichever thread or lane computes it.
 static_assert(sizeof(PairResult) == pair_result_size * sizeof(double));
 
-SimdPairInput simd_pair_input(const ParticleStore& p, const PairTable& table, PairContacts& c,
-                              const std::vector<uint32_t>& owners, std::vector<double>& records,
-                              int one_material, double dt, double drift) {
-  return SimdPairInput{&p.position[0].x,
-                       &p.velocity[0].x,
-                       &p.angular_velocity[0].x,
-                       &p.force[0].x,
-                       &p.torque[0].x,
-                       p.radius.data(),
-                       p.inverse_mass.data(),
-                       p.inverse_inertia.data(),
-                       p.material.data(),
-                       records.data(),
-                       &table(0, 0),
-                       table.material_count(),
-                       one_material >= 0 ? &table(one_material, one_material) : nullptr,
-                       c.row_start.data(),
-                       c.partner.data(),
-                       owners.data(),
-                       &c.sliding_spring[0].x,
-                       &c.result[0].force_on_first.x,
-                       dt,
-                       drift};
-}
-
 double pair_forces_simd(const SimdPairKernel& kernel, const SimdPairInput& in,
                         const ParticleStore& p, const PairTable& table, PairContacts& c,
                         const std::vector<uint32_t>& owners, std::vector<uint32_t>& deferred,
@@ -169,113 +135,6 @@ double pair_forces_simd(const SimdPairKernel& kernel, const SimdPairInput& in,
   return m;
 }
 
-// The wall contacts of particles [first, end).
-template <bool R, bool T, bool RF>
-double wall_forces(const ParticleStore& p, const std::vector<Wall>& walls, const PairTable& table,
-                   WallContacts& c, double dt, double drift, long first, long end) {
-  double max_fraction = 0.0;
-  for (long i = first; i < end; ++i) {
-    const double r = p.radius[i];
-    for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e) {
-      const Wall& w = walls[c.wall[e]];
-      const WallGap g = wall_gap(w, p.position[i]);
-      const double overlap = r - g.gap;
-      // A wall with mass (a slider) is a second body: m* = m_p M / (m_p + M); a fixed wall has
-      // M = infinity. A fixed particle touches only walls that have mass.
-      const double wall_inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;
-      const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass;
-      if (overlap <= 0.0 || inverse_mass_sum == 0.0) {
-        c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
-        c.normal_stiffness[e] = c.normal_force[e] = 0.0;
-        c.sliding_spring[e] = Vec3{};
-        if constexpr (R) c.rolling_angle[e] = Vec3{};
-        if constexpr (T) c.twisting_angle[e] = 0.0;
-        if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
-        continue;
-      }
-      ContactKinematics k;
-      k.normal = g.normal;
-      k.overlap = overlap;
-      k.effective_radius = r;
-      k.effective_mass = 1.0 / inverse_mass_sum;
-      const double lever = g.gap;  // contact point on the wall surface
-      set_step_displacement(k, drift, p.velocity[i], p.angular_velocity[i], lever, w.velocity,
-                            Vec3{}, 0.0, 1.0);
-      // A wall with mass is integrated like a particle: its velocity too is a half-step one here.
-      const Vec3 wall_velocity_at_step_end =
-          w.mass > 0.0 ? w.velocity + (0.5 * dt / w.mass) * (w.force + w.external_force)
-                       : w.velocity;
-      set_relative_velocity(k, velocity_at_step_end(p, i, dt), spin_at_step_end(p, i, dt), lever,
-                            wall_velocity_at_step_end, Vec3{}, 0.0);
-      double inertia = 0.0, contact_radius = 0.0;
-      if constexpr (R || T) {
-        inertia = p.inverse_inertia[i] > 0.0 ? 1.0 / p.inverse_inertia[i] : 0.0;
-        contact_radius = contact_circle_radius_on_wall(r, overlap);
-      }
-      ContactHistoryRef h{&c.sliding_spring[e], R ? &c.rolling_angle[e] : nullptr,
-                          T ? &c.twisting_angle[e] : nullptr,
-                          RF ? &c.rolling_force_displacement[e] : nullptr};
-      const PairParams& pair = table(p.material[i], w.material);
-      // First touch in this step (see the pair loop): the gap before the drift, with the wall
-      // and the particle moved back (exact for any wall shape). The gate allows for rectangle
-      // edges and cylinders, where the gap is not linear in the positions: sideways drift s_t
-      // changes it by at most |s_t|^2 / (2 gap).
-      double touch_fraction = 0.0;
-      if (drift > 0.0) {
-        const Vec3 s = drift * (p.velocity[i] - w.velocity);
-        const double s_n = dot(s, g.normal);
-        if (overlap <= 2.0 * (k.overlap_increment + (norm2(s) - s_n * s_n) / (2.0 * g.gap))) {
-          Wall before = w;
-          before.point -= drift * w.velocity;
-          const double overlap_before =
-              r - wall_gap(before, p.position[i] - drift * p.velocity[i]).gap;
-          touch_fraction = first_touch_fraction(overlap_before, overlap);
-          if (touch_fraction > 0.0) scale_step_increments(k, touch_fraction);
-        }
-      }
-      const NormalParams normal = normal_params(pair, k.effective_radius, k.effective_mass);
-      ContactResponse resp =
-          contact_response<R, T, RF>(pair, normal, k, inertia, contact_radius, h);
-      if (touch_fraction > 0.0)
-        charge_first_touch<R, T, RF>(pair, normal, k, touch_fraction, inertia, resp);
-      c.force_on_particle[e] = resp.force_on_a;
-      if constexpr (R || T)
-        c.torque_on_particle[e] = resp.torque_on_a(lever);
-      else
-        c.torque_on_particle[e] = lever * resp.torque_arm;
-      c.normal_stiffness[e] = resp.normal_stiffness;
-      c.normal_force[e] = resp.normal_force;
-      max_fraction = std::max(max_fraction, overlap / r);
-    }
-  }
-  return max_fraction;
-}
-
-// Calls F<R, T, RF>() for the runtime combination of optional pieces.
-template <template <bool, bool, bool> class F, class... Args>
-double dispatch(ContactPieces pieces, Args&&... args) {
-  const int code =
-      (pieces.rolling ? 4 : 0) | (pieces.twisting ? 2 : 0) | (pieces.rolling_force ? 1 : 0);
-  switch (code) {
-    case 0:
-      return F<false, false, false>::run(args...);
-    case 1:
-      return F<false, false, true>::run(args...);
-    case 2:
-      return F<false, true, false>::run(args...);
-    case 3:
-      return F<false, true, true>::run(args...);
-    case 4:
-      return F<true, false, false>::run(args...);
-    case 5:
-      return F<true, false, true>::run(args...);
-    case 6:
-      return F<true, true, false>::run(args...);
-    default:
-      return F<true, true, true>::run(args...);
-  }
-}
-
 template <bool R, bool T, bool RF>
 struct PairKernel {
   static double run(const ParticleStore& p, const PairTable& t, PairContacts& c, double dt,
@@ -283,14 +142,6 @@ struct PairKernel {
     return pair_forces<R, T, RF>(p, t, c, dt, drift, b.first, b.end);
   }
 };
-template <bool R, bool T, bool RF>
-struct WallKernel {
-  static double run(const ParticleStore& p, const std::vector<Wall>& w, const PairTable& t,
-                    WallContacts& c, double dt, double drift, IndexBlock b) {
-    return wall_forces<R, T, RF>(p, w, t, c, dt, drift, b.first, b.end);
-  }
-};
-
 }  // namespace
 
 bool Simulation::uses_pair_kernel() const {
@@ -306,16 +157,44 @@ void Simulation::index_entry_owners() {
   const PairContacts& c = pairs_;
   if (!uses_pair_kernel()) {  // only the kernel reads them
     entry_owners_.clear();
+    wall_entry_owners_.clear();
     particle_records_.clear();
     return;
   }
   particle_records_.resize(particles_.size() * particle_record_size);
   entry_owners_ = row_of_each_entry(c.row_start);
+  wall_entry_owners_ = row_of_each_entry(wall_contacts_.row_start);
   const std::vector<int32_t>& material = particles_.material;
   one_material_ = !material.empty() && std::all_of(material.begin(), material.end(),
                                                    [&](int32_t m) { return m == material[0]; })
                       ? material[0]
                       : -1;
+}
+
+SimdPairInput Simulation::kernel_input(double drift) {
+  const ParticleStore& p = particles_;
+  PairContacts& c = pairs_;
+  const PairTable& table = table_;
+  return SimdPairInput{&p.position[0].x,
+                       &p.velocity[0].x,
+                       &p.angular_velocity[0].x,
+                       &p.force[0].x,
+                       &p.torque[0].x,
+                       p.radius.data(),
+                       p.inverse_mass.data(),
+                       p.inverse_inertia.data(),
+                       p.material.data(),
+                       particle_records_.data(),
+                       &table(0, 0),
+                       table.material_count(),
+                       one_material_ >= 0 ? &table(one_material_, one_material_) : nullptr,
+                       c.row_start.data(),
+                       c.partner.data(),
+                       entry_owners_.data(),
+                       &c.sliding_spring[0].x,
+                       &c.result[0].force_on_first.x,
+                       settings_.time_step,
+                       drift};
 }
 
 void Simulation::prepare_pair_forces() {
@@ -324,27 +203,17 @@ void Simulation::prepare_pair_forces() {
 }
 
 void Simulation::write_particle_records(double drift, IndexBlock block) {
-  const SimdPairInput in =
-      simd_pair_input(particles_, table_, pairs_, entry_owners_, particle_records_, one_material_,
-                      settings_.time_step, drift);
-  simd_pair_kernel_.records(in, block.first, block.end);
+  simd_pair_kernel_.records(kernel_input(drift), block.first, block.end);
 }
 
 double Simulation::compute_pair_forces(double drift, IndexBlock block, long& handed_back) {
   if (uses_pair_kernel()) {
-    const SimdPairInput in =
-        simd_pair_input(particles_, table_, pairs_, entry_owners_, particle_records_, one_material_,
-                        settings_.time_step, drift);
-    return pair_forces_simd(simd_pair_kernel_, in, particles_, table_, pairs_, entry_owners_,
-                            deferred_pairs_, handed_back, settings_.time_step, drift, block);
+    return pair_forces_simd(simd_pair_kernel_, kernel_input(drift), particles_, table_, pairs_,
+                            entry_owners_, deferred_pairs_, handed_back, settings_.time_step, drift,
+                            block);
   }
   return dispatch<PairKernel>(pieces_, particles_, table_, pairs_, settings_.time_step, drift,
                               block);
-}
-
-double Simulation::compute_wall_forces(double drift, IndexBlock block) {
-  return dispatch<WallKernel>(pieces_, particles_, walls_, table_, wall_contacts_,
-                              settings_.time_step, drift, block);
 }
 
 }  // namespace grainlab

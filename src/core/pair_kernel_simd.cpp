@@ -21,178 +21,65 @@
 namespace grainlab::GRAINLAB_SIMD_NS {
 namespace {
 
-#define GRAINLAB_LANES_INLINE [[gnu::always_inline]] inline
+#include "core/simd_lanes.hpp"  // NOLINT(build/include): part of this file, inside the namespace
 
-constexpr int lanes = 8;
-using vd = double __attribute__((vector_size(64)));
-using vmask = long long __attribute__((vector_size(64)));  // per lane: -1 true, 0 false
-
-GRAINLAB_LANES_INLINE vd splat(double x) {  // x in every lane
-  return vd{x, x, x, x, x, x, x, x};
-}
-
-GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
-#if defined(__AVX512F__)
-  return _mm512_mask_sqrt_pd(a, 0xFF, a);  // all lanes (the unmasked form warns in GCC 12)
-#elif defined(__AVX__)
-  const __m256d lo = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 0, 1, 2, 3));
-  const __m256d hi = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 4, 5, 6, 7));
-  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
-#else
-  const __m128d q0 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 0, 1));
-  const __m128d q1 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 2, 3));
-  const __m128d q2 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 4, 5));
-  const __m128d q3 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 6, 7));
-  const auto lo = __builtin_shufflevector(q0, q1, 0, 1, 2, 3);
-  const auto hi = __builtin_shufflevector(q2, q3, 0, 1, 2, 3);
-  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
-#endif
-}
-
-// A 3-vector per lane, with the operations of core/vec3.hpp in the same association order.
-struct V3 {
-  vd x, y, z;
-};
-GRAINLAB_LANES_INLINE V3 operator+(const V3& a, const V3& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-GRAINLAB_LANES_INLINE V3 operator-(const V3& a, const V3& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-GRAINLAB_LANES_INLINE V3 operator*(vd s, const V3& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-GRAINLAB_LANES_INLINE V3 operator*(double s, const V3& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-GRAINLAB_LANES_INLINE vd dot(const V3& a, const V3& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-GRAINLAB_LANES_INLINE V3 cross(const V3& a, const V3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-GRAINLAB_LANES_INLINE V3 select(vmask m, const V3& a, const V3& b) {
-  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
-}
-
-// The entry index of each lane, with the offsets of its fields: index for a scalar field,
-// 3 index for a Vec3 field. With AVX2 and AVX-512 the lanes are filled by gather instructions
-// (plain loads: the values are bit for bit those of scalar loads).
-struct LaneIndex {
-  const uint32_t* index;
-#if defined(__AVX2__)
-  __m256i times1, times3;  // 8 x int32
-#endif
-};
-GRAINLAB_LANES_INLINE LaneIndex lane_index(const uint32_t* index) {
-  LaneIndex r{};
-  r.index = index;
-#if defined(__AVX2__)
-  r.times1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
-  r.times3 = _mm256_add_epi32(_mm256_add_epi32(r.times1, r.times1), r.times1);
-#endif
-  return r;
-}
-// Lane l of the result: base[stride * index[l] + offset] (stride 1 or 3).
-GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int stride,
-                                    int offset) {
-#if defined(__AVX512F__)
-  // (the masked form with all lanes on: the unmasked one warns in GCC 12)
-  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xFF, stride == 3 ? x.times3 : x.times1,
-                                  base + offset, 8);
-#elif defined(__AVX2__)
-  // (the masked form with all lanes on, as for AVX-512)
-  const __m256i index = stride == 3 ? x.times3 : x.times1;
-  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  const __m256d lo = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
-                                              _mm256_castsi256_si128(index), all, 8);
-  const __m256d hi = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
-                                              _mm256_extracti128_si256(index, 1), all, 8);
-  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
-#else
-  vd r{};
-  for (int l = 0; l < lanes; ++l) r[l] = base[size_t{x.index[l]} * stride + offset];
-  return r;
-#endif
-}
-GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
-  return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
-}
-GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v, int l) {
-  double* out = base + size_t{index} * 3;
-  out[0] = v.x[l];
-  out[1] = v.y[l];
-  out[2] = v.z[l];
-}
-
-// 8 x 8 transpose: value[v][l] = r[l][v] (rows of 8 values per lane to one vector per value, or
-// back: the transpose is its own inverse). Pairs of rows, then quads, then halves.
-GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) {
-  vd a[lanes], b[lanes];
-  for (int k = 0; k < 4; ++k) {
-    a[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
-    a[2 * k + 1] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+// The constants of each lane's pair (contact/pair_params.hpp): k_n per unit r*, the damping
+// ratio, the tangential stiffness and damping ratios and the friction coefficient.
+struct LaneConstants {
+  vd stiffness_per_radius, damping_ratio, rns, rzs, friction;
+  GRAINLAB_LANES_INLINE void set(int l, const PairParams& pair) {
+    stiffness_per_radius[l] = pair.stiffness_per_radius;
+    damping_ratio[l] = pair.damping_ratio;
+    rns[l] = pair.rns;
+    rzs[l] = pair.rzs;
+    friction[l] = pair.friction;
   }
-  for (int h = 0; h < 2; ++h)            // rows 0-3, rows 4-7
-    for (int odd = 0; odd < 2; ++odd) {  // values 0 2 4 6, values 1 3 5 7
-      const vd& x = a[4 * h + odd];
-      const vd& y = a[4 * h + 2 + odd];
-      b[4 * h + 2 * odd] = __builtin_shufflevector(x, y, 0, 1, 8, 9, 4, 5, 12, 13);
-      b[4 * h + 2 * odd + 1] = __builtin_shufflevector(x, y, 2, 3, 10, 11, 6, 7, 14, 15);
-    }
-  // b[2 odd + s] (rows 0-3) and b[4 + 2 odd + s] (rows 4-7) hold values v and v + 4 with
-  // v = odd + 2 s
-  for (int odd = 0; odd < 2; ++odd)
-    for (int s = 0; s < 2; ++s) {
-      const vd& lo = b[2 * odd + s];
-      const vd& hi = b[4 + 2 * odd + s];
-      const int v = odd + 2 * s;
-      value[v] = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
-      value[v + 4] = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
-    }
-}
-
-// The velocities of each lane's particle from its record (particle_records): per lane a load of
-// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. The
-// two halves are loaded where they are first needed, which keeps fewer vectors live.
-using vd4 = double __attribute__((vector_size(32)));
-struct RecordHead {  // values 0..7
-  V3 velocity, spin;
-  vd velocity_at_end_x, velocity_at_end_y;
 };
-GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const uint32_t* index) {
-  vd r[lanes];  // r[l]: values 0..7 of lane l
-  for (int l = 0; l < lanes; ++l)
-    __builtin_memcpy(&r[l], record + size_t{index[l]} * particle_record_size, sizeof r[l]);
-  vd value[lanes];
-  transpose8(r, value);
-  return {{value[0], value[1], value[2]}, {value[3], value[4], value[5]}, value[6], value[7]};
-}
-struct RecordTail {  // values 8..11
-  vd velocity_at_end_z;
-  V3 spin_at_end;
-};
-GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const uint32_t* index) {
-  vd4 q[lanes];  // q[l]: values 8..11 of lane l
-  for (int l = 0; l < lanes; ++l)
-    __builtin_memcpy(&q[l], record + size_t{index[l]} * particle_record_size + 8, sizeof q[l]);
-  // 4 x 8 transpose: lanes l and l + 4 side by side, then pairs and quads as above.
-  vd c[4], d[4], value[4];
-  for (int k = 0; k < 4; ++k)
-    c[k] = __builtin_shufflevector(q[k], q[k + 4], 0, 1, 2, 3, 4, 5, 6, 7);
-  d[0] = __builtin_shufflevector(c[0], c[1], 0, 8, 2, 10, 4, 12, 6, 14);
-  d[1] = __builtin_shufflevector(c[0], c[1], 1, 9, 3, 11, 5, 13, 7, 15);
-  d[2] = __builtin_shufflevector(c[2], c[3], 0, 8, 2, 10, 4, 12, 6, 14);
-  d[3] = __builtin_shufflevector(c[2], c[3], 1, 9, 3, 11, 5, 13, 7, 15);
-  value[0] = __builtin_shufflevector(d[0], d[2], 0, 1, 8, 9, 4, 5, 12, 13);
-  value[2] = __builtin_shufflevector(d[0], d[2], 2, 3, 10, 11, 6, 7, 14, 15);
-  value[1] = __builtin_shufflevector(d[1], d[3], 0, 1, 8, 9, 4, 5, 12, 13);
-  value[3] = __builtin_shufflevector(d[1], d[3], 2, 3, 10, 11, 6, 7, 14, 15);
-  return {value[0], {value[1], value[2], value[3]}};
-}
 
-GRAINLAB_LANES_INLINE void store_zero3(double* out) {
-  out[0] = out[1] = out[2] = 0.0;
+// What the law gives a contact (contact_response without the optional pieces): the force on
+// body A (the particle of the row, or the particle on a wall), the torque arm n x F_t, F_n and
+// the spring after the step.
+struct LawResult {
+  V3 force_on_a, arm;
+  vd normal_force;
+  V3 spring;
+};
+// contact_response from the normal force on, for pairs and walls alike: F_n, the spring turned
+// into the tangent plane, advanced and capped. k_n, c_n: normal_params; k: the pair's constants;
+// spring: the stored history.
+GRAINLAB_LANES_INLINE LawResult contact_law(const V3& n, vd overlap, vd overlap_rate,
+                                            const V3& tangential_displacement,
+                                            const V3& tangential_velocity, vd normal_stiffness,
+                                            vd normal_damping, const LaneConstants& k, V3 spring) {
+  // normal_force: F_n = k_n U_n + c_n dU_n/dt, clamped at 0
+  const vd f = normal_stiffness * overlap + normal_damping * overlap_rate;
+  const vd normal_force = f > 0.0 ? f : vd{};
+  const vd sliding_stiffness = k.rns * normal_stiffness, sliding_damping = k.rzs * normal_damping;
+
+  // keep_in_tangent_plane: turn the spring into the current tangent plane, length kept
+  {
+    const vd length2 = dot(spring, spring);
+    const V3 in_plane = spring - dot(spring, n) * n;
+    const vd in_plane2 = dot(in_plane, in_plane);
+    const V3 scaled = lane_sqrt(length2 / in_plane2) * in_plane;
+    spring = select(length2 == 0.0, spring, select(in_plane2 > 0.0, scaled, in_plane));
+  }
+  // spring_slider: advance, respond, cap at mu F_n (slip shortens the spring)
+  spring = spring + tangential_displacement;
+  V3 tangential = sliding_stiffness * spring + sliding_damping * tangential_velocity;
+  {
+    const vd cap = k.friction * normal_force;
+    const vd magnitude2 = dot(tangential, tangential);
+    const vmask slip = magnitude2 > cap * cap;
+    const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
+    const V3 slipped_spring =
+        select(sliding_stiffness > 0.0,
+               (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
+    tangential = select(slip, capped, tangential);
+    spring = select(slip, slipped_spring, spring);
+  }
+  // the force on A and the torque arm n x F_t (each body's torque is its lever times the arm)
+  return {tangential - normal_force * n, cross(n, tangential), normal_force, spring};
 }
 
 // Touching contacts collected for one pass of the lane arithmetic. The distance test that
@@ -263,65 +150,28 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const bool drifted = drift > 0.0;
 
   // the pair's constants
-  vd stiffness_per_radius, damping_ratio, rns, rzs, friction;
+  LaneConstants k;
   if (const PairParams* one = in.one_pair) {  // one material: the same constants in every lane
-    stiffness_per_radius = splat(one->stiffness_per_radius);
-    damping_ratio = splat(one->damping_ratio);
-    rns = splat(one->rns);
-    rzs = splat(one->rzs);
-    friction = splat(one->friction);
+    k = {splat(one->stiffness_per_radius), splat(one->damping_ratio), splat(one->rns),
+         splat(one->rzs), splat(one->friction)};
   } else {
-    for (int l = 0; l < lanes; ++l) {
-      const PairParams& pair =
-          in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]];
-      stiffness_per_radius[l] = pair.stiffness_per_radius;
-      damping_ratio[l] = pair.damping_ratio;
-      rns[l] = pair.rns;
-      rzs[l] = pair.rzs;
-      friction[l] = pair.friction;
-    }
+    for (int l = 0; l < lanes; ++l)
+      k.set(l, in.pair_params[in.material[b.i[l]] * in.material_count + in.material[b.j[l]]]);
   }
   // normal_params: k_n = pi E r* and c_n = 2 zeta sqrt(k_n m*), with r* = r_i r_j / (r_i + r_j)
   // and m* = 1 / (1/m_i + 1/m_j); computed per contact rather than stored per entry (16 B per
   // entry; docs/performance.md sec. 13)
   const vd inverse_mass_i = load_lanes(in.inverse_mass, lane_index(b.i), 1, 0);
   const vd inverse_mass_j = load_lanes(in.inverse_mass, lane_index(b.j), 1, 0);
-  const vd normal_stiffness = stiffness_per_radius * (ri * rj / reach);
-  const vd normal_damping =
-      2.0 * damping_ratio * lane_sqrt(normal_stiffness * (1.0 / (inverse_mass_i + inverse_mass_j)));
+  const vd normal_stiffness = k.stiffness_per_radius * (ri * rj / reach);
+  const vd normal_damping = 2.0 * k.damping_ratio *
+                            lane_sqrt(normal_stiffness * (1.0 / (inverse_mass_i + inverse_mass_j)));
 
-  // normal_force: F_n = k_n U_n + c_n dU_n/dt, clamped at 0
-  const vd f = normal_stiffness * overlap + normal_damping * overlap_rate;
-  const vd normal_force = f > 0.0 ? f : vd{};
-  const vd sliding_stiffness = rns * normal_stiffness, sliding_damping = rzs * normal_damping;
-
-  // keep_in_tangent_plane: turn the spring into the current tangent plane, length kept
-  V3 spring = load_lanes3(in.sliding_spring, e);
-  {
-    const vd length2 = dot(spring, spring);
-    const V3 in_plane = spring - dot(spring, n) * n;
-    const vd in_plane2 = dot(in_plane, in_plane);
-    const V3 scaled = lane_sqrt(length2 / in_plane2) * in_plane;
-    spring = select(length2 == 0.0, spring, select(in_plane2 > 0.0, scaled, in_plane));
-  }
-  // spring_slider: advance, respond, cap at mu F_n (slip shortens the spring)
-  spring = spring + tangential_displacement;
-  V3 tangential = sliding_stiffness * spring + sliding_damping * tangential_velocity;
-  {
-    const vd cap = friction * normal_force;
-    const vd magnitude2 = dot(tangential, tangential);
-    const vmask slip = magnitude2 > cap * cap;
-    const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
-    const V3 slipped_spring =
-        select(sliding_stiffness > 0.0,
-               (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
-    tangential = select(slip, capped, tangential);
-    spring = select(slip, slipped_spring, spring);
-  }
-  // contact_response: force on i and the torque arm n x F_t (each body's torque is its lever
-  // times the arm, formed in the gather from the stored overlap)
-  const V3 force_on_i = tangential - normal_force * n;
-  const V3 arm = cross(n, tangential);
+  const LawResult law =
+      contact_law(n, overlap, overlap_rate, tangential_displacement, tangential_velocity,
+                  normal_stiffness, normal_damping, k, load_lanes3(in.sliding_spring, e));
+  const V3 &force_on_i = law.force_on_a, &arm = law.arm, &spring = law.spring;
+  const vd& normal_force = law.normal_force;
   const vd fraction = overlap / (rj < ri ? rj : ri);
 
   // Which lanes to store: the batch's contacts, less those handed back to the scalar law.
@@ -436,6 +286,98 @@ double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t
     if (max_fraction < m) max_fraction = m;
   }
   return max_fraction;
+}
+
+unsigned wall_law(const SimdPairInput& in, const SimdWallInput& walls, SimdWallBatch& b) {
+  const int count = b.count;
+  // Unused lanes repeat the last contact: valid numbers, never stored.
+  for (int l = count; l < lanes; ++l) {
+    const int last = count - 1;
+    b.normal_x[l] = b.normal_x[last], b.normal_y[l] = b.normal_y[last];
+    b.normal_z[l] = b.normal_z[last], b.gap[l] = b.gap[last], b.overlap[l] = b.overlap[last];
+    b.radius[l] = b.radius[last];
+    b.particle[l] = b.particle[last], b.entry[l] = b.entry[last], b.wall[l] = b.wall[last];
+  }
+  static_assert(wall_batch_lanes == lanes);
+  V3 n;
+  vd gap, overlap, radius;
+  __builtin_memcpy(&n.x, b.normal_x, sizeof n.x);
+  __builtin_memcpy(&n.y, b.normal_y, sizeof n.y);
+  __builtin_memcpy(&n.z, b.normal_z, sizeof n.z);
+  __builtin_memcpy(&gap, b.gap, sizeof gap);
+  __builtin_memcpy(&overlap, b.overlap, sizeof overlap);
+  __builtin_memcpy(&radius, b.radius, sizeof radius);
+  const double drift = in.drift;
+
+  // Per lane: its wall's velocities and mass, and the constants of the (bead, wall) pair.
+  V3 wall_velocity, wall_velocity_at_end;
+  vd wall_inverse_mass;
+  LaneConstants k;
+  for (int l = 0; l < lanes; ++l) {
+    const SimdWallState& w = walls.walls[b.wall[l]];
+    wall_velocity.x[l] = w.velocity[0], wall_velocity.y[l] = w.velocity[1];
+    wall_velocity.z[l] = w.velocity[2];
+    wall_velocity_at_end.x[l] = w.velocity_at_end[0];
+    wall_velocity_at_end.y[l] = w.velocity_at_end[1];
+    wall_velocity_at_end.z[l] = w.velocity_at_end[2];
+    wall_inverse_mass[l] = w.inverse_mass;
+    k.set(l, in.pair_params[in.material[b.particle[l]] * in.material_count + w.material]);
+  }
+  // m* = m_p M / (m_p + M): a wall with mass is a second body, a fixed one has M = infinity
+  const vd inverse_mass_i = load_lanes(in.inverse_mass, lane_index(b.particle), 1, 0);
+  const vd effective_mass = 1.0 / (inverse_mass_i + wall_inverse_mass);
+  const vd lever = gap;  // contact point on the wall surface
+  // Body B, the wall, has no spin and no lever: the scalar law multiplies and adds its zeros,
+  // and so do the lanes (a zero's sign must come out the same).
+  const V3 no_spin{};
+  const vd no_lever{};
+
+  // set_step_displacement (half-step velocities, lever_shrink = 1: the lever is r - U_n)
+  const RecordHead head = load_record_head(in.particle_record, b.particle);
+  const V3 &v_i = head.velocity, &w_i = head.spin;
+  const V3 dv = wall_velocity - v_i;
+  const vd overlap_increment = -drift * dot(dv, n);
+  const vd shift = 1.0 * 0.5 * overlap_increment;
+  const V3 step_relative = dv - cross((no_lever + shift) * no_spin + (lever + shift) * w_i, n);
+  const V3 tangential_displacement = drift * (step_relative - dot(step_relative, n) * n);
+
+  // set_relative_velocity with the end-of-step estimates: the dashpots' rates
+  const RecordTail tail = load_record_tail(in.particle_record, b.particle);
+  const V3 v_end_i{head.velocity_at_end_x, head.velocity_at_end_y, tail.velocity_at_end_z};
+  const V3 relative =
+      wall_velocity_at_end - v_end_i - cross(0.0 * no_spin + lever * tail.spin_at_end, n);
+  const vd normal_speed = dot(relative, n);
+  const vd overlap_rate = -normal_speed;
+  const V3 tangential_velocity = relative - normal_speed * n;
+
+  // wall_forces: may this contact have begun during the step? Then the scalar law takes it.
+  const V3 s = drift * (v_i - wall_velocity);
+  const vd s_n = dot(s, n);
+  const vmask begun = overlap <= 2.0 * (overlap_increment + (dot(s, s) - s_n * s_n) / (2.0 * gap));
+  const bool drifted = drift > 0.0;
+
+  // normal_params with r* = r and m* above
+  const vd normal_stiffness = k.stiffness_per_radius * radius;
+  const vd normal_damping = 2.0 * k.damping_ratio * lane_sqrt(normal_stiffness * effective_mass);
+  const LawResult law = contact_law(n, overlap, overlap_rate, tangential_displacement,
+                                    tangential_velocity, normal_stiffness, normal_damping, k,
+                                    load_lanes3(walls.sliding_spring, lane_index(b.entry)));
+  const V3 torque = lever * law.arm;
+
+  unsigned handed_back = 0;
+  for (int l = 0; l < count; ++l) {
+    const uint32_t e = b.entry[l];
+    if (drifted && begun[l]) {
+      handed_back |= 1u << l;
+      continue;
+    }
+    store_lane3(walls.force_on_particle, e, law.force_on_a, l);
+    store_lane3(walls.torque_on_particle, e, torque, l);
+    store_lane3(walls.sliding_spring, e, law.spring, l);
+    walls.normal_stiffness[e] = normal_stiffness[l];
+    walls.normal_force[e] = law.normal_force[l];
+  }
+  return handed_back;
 }
 
 }  // namespace grainlab::GRAINLAB_SIMD_NS

@@ -1,7 +1,7 @@
 // The particle-pair force loop for the reference contact law (sliding friction only: no rolling,
 // twisting or rolling-force pieces), vectorised across contacts: 8 contacts per lane vector,
 // the branches of the law (the clamp of F_n, the turn of the spring into the tangent plane, the
-// slip) as per-lane selects.
+// slip) as per-lane selects; and the same law for the particle-wall contacts (wall_law).
 //
 // Each lane does exactly the arithmetic of the scalar loop (core/contact_forces.cpp with
 // contact/contact_law.hpp), in the same order, with IEEE operations only (+ - * / and a
@@ -66,6 +66,46 @@ struct SimdPairInput {
   double drift;            // s: time the positions last drifted over (0 on a fresh state)
 };
 
+// The wall contacts through the same lanes (the law of contact/contact_law.hpp with body B a
+// wall: lever 0, no spin, m* from the particle and the wall's mass). The caller finds the
+// touching candidates (the gap to a wall of any shape, core/contact_forces.cpp) and hands them
+// over in batches of 8; the lanes read the particle's velocities from its record, so the records
+// must have been written, as for the pair rows.
+//
+// One wall as the lanes read it, prepared before the force region from core/wall.hpp's Wall.
+struct SimdWallState {
+  double velocity[3];         // m/s, half-step (a wall with mass) or prescribed
+  double velocity_at_end[3];  // m/s, end-of-step estimate for the dashpots (= velocity if fixed)
+  double inverse_mass;        // 1/kg, 0 for a wall whose motion is prescribed
+  int32_t material;
+};
+// Views of the wall contact store (core/contact_store.hpp, WallContacts; Vec3 fields as x, y, z).
+struct SimdWallInput {
+  const SimdWallState* walls;
+  double* sliding_spring;      // per entry, in/out
+  double* force_on_particle;   // per entry, out
+  double* torque_on_particle;  // per entry, out
+  double* normal_stiffness;    // per entry, out
+  double* normal_force;        // per entry, out
+};
+constexpr int wall_batch_lanes = 8;
+// Up to 8 touching wall contacts (lanes count .. 7 unused): the contact normal (unit, from the
+// particle's centre towards the wall), the gap from the centre to the wall surface (the lever),
+// the overlap r - gap and the particle's radius.
+struct SimdWallBatch {
+  alignas(64) double normal_x[wall_batch_lanes], normal_y[wall_batch_lanes],
+      normal_z[wall_batch_lanes], gap[wall_batch_lanes], overlap[wall_batch_lanes],
+      radius[wall_batch_lanes];
+  uint32_t particle[wall_batch_lanes], entry[wall_batch_lanes], wall[wall_batch_lanes];
+  int count = 0;
+};
+// Runs the law on the batch's contacts and stores their results and springs, except for
+// contacts that may have begun in this step (first touch), which it leaves untouched: returns
+// them as a bit mask of lanes for the caller's scalar law. Reads `pairs` for the particle data,
+// the records, the pair constants, time_step and drift. May overwrite the unused lanes.
+using SimdWallLaw = unsigned (*)(const SimdPairInput& pairs, const SimdWallInput& in,
+                                 SimdWallBatch& batch);
+
 // Computes the entries of rows [first_row, end_row). Entries left to the caller (first touch in
 // this step) are written to deferred[0 .. deferred_count), which must have room for every entry
 // of those rows. Returns the largest overlap / min(r_i, r_j) among the touching contacts, 0 if
@@ -80,19 +120,23 @@ using SimdParticleRecords = void (*)(const SimdPairInput& in, long first, long e
 namespace simd_sse2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
+unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 }  // namespace simd_sse2
 namespace simd_avx2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
+unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 }  // namespace simd_avx2
 namespace simd_avx512 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
+unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 }  // namespace simd_avx512
 
 struct SimdPairKernel {
   SimdPairRows rows = nullptr;  // null: the scalar loop
   SimdParticleRecords records = nullptr;
+  SimdWallLaw walls = nullptr;
   const char* name = "scalar";  // "scalar", "sse2", "avx2" or "avx512"
 };
 

@@ -22,18 +22,22 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
 }
 
 void Simulation::rebuild_neighbors() {
-  entry_owners_ = {};  // made anew below: not held through the rebuild
+  entry_owners_ = {}, wall_entry_owners_ = {};  // made anew below: not held through the rebuild
   neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
   index_entry_owners();
 }
 
 void Simulation::step() {
   for (StepListener* l : listeners_) l->before_step(*this);
-  if (kick_and_drift()) {
+  // The drift writes the kernel's velocity records on its way; a rebuild reorders the particles,
+  // and then the force region writes them again.
+  bool records_written = false;
+  if (kick_and_drift(records_written)) {
     rebuild_neighbors();
+    records_written = false;
     for (StepListener* l : listeners_) l->after_rebuild(*this);
   }
-  compute_forces(settings_.time_step, true);
+  compute_forces(settings_.time_step, true, records_written);
   time_ += settings_.time_step;
   ++step_count_;
   check_health();
@@ -49,21 +53,34 @@ void Simulation::scale_positions(const Vec3& centre, double factor) {
 
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
 // Returns whether the neighbour list must be rebuilt: the check of each particle's displacement
-// since the last rebuild is made in the same loop (one parallel region, not two).
-bool Simulation::kick_and_drift() {
+// since the last rebuild is made in the same loop (one parallel region, not two). When the
+// vectorised kernel runs, the same pass writes its velocity records (particle_records: the
+// half-step velocities just made and the end-of-step estimates from the forces held), tile by
+// tile while the tile's velocities and forces are still in the caches, and sets records_written;
+// the force region then skips its own records stage.
+bool Simulation::kick_and_drift(bool& records_written) {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
   // (the list's positions are only looked at when it was built for this many particles)
   const bool check_particles = neighbors_.built_for(p.size());
+  records_written = uses_pair_kernel();
+  constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
   int moved = 0;
-#pragma omp parallel for schedule(static) reduction(| : moved) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) {
-    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-    p.position[i] += dt * p.velocity[i];
-    p.rotation[i] += dt * p.angular_velocity[i];
-    if (check_particles) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
+#pragma omp parallel reduction(| : moved) if (n > parallel_threshold)
+  {
+    const IndexBlock block = thread_block(n);
+    for (long first = block.first; first < block.end; first += tile) {
+      const long end = std::min(block.end, first + tile);
+      for (long i = first; i < end; ++i) {
+        p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+        p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+        p.position[i] += dt * p.velocity[i];
+        p.rotation[i] += dt * p.angular_velocity[i];
+        if (check_particles) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
+      }
+      if (records_written) write_particle_records(dt, {first, end});
+    }
   }
   for (Wall& w : walls_) {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
@@ -118,23 +135,26 @@ void Simulation::set_pair_table(PairTable table) {
 // gather) gravity and the per-particle external forces; then, closing a step, the second half
 // kick. Every sum and every contact is the same arithmetic whatever the thread count and
 // whichever thread takes it.
-void Simulation::compute_forces(double drift, bool close_step) {
+void Simulation::compute_forces(double drift, bool close_step, bool records_written) {
   const long n = static_cast<long>(particles_.size());
   prepare_pair_forces();
+  prepare_wall_lanes();
   const bool parallel = n > parallel_threshold;
   const int team = parallel ? omp_get_max_threads() : 1;
   const long chunk = stage_chunk(n, team);
-  const bool records = uses_pair_kernel();
+  const bool records = uses_pair_kernel() && !records_written;
   if (records) record_chunks_.plan(n, team, chunk);
   contact_chunks_.plan(n, team, chunk);
   particle_chunks_.plan(n, team, chunk);
   double max_fraction = 0.0, max_speed2 = 0.0;
-  long handed_back = 0;
-  // One region, three stages, a barrier after each of the first two: the pair rows read every
-  // particle's record, the gather reads every entry's result. Each stage shares its chunks
-  // (core/chunk_queue.hpp).
-#pragma omp parallel reduction(max : max_fraction, max_speed2) reduction(+ : handed_back) \
-    if (parallel)
+  long handed_back = 0, walls_handed_back = 0;
+  // One region, up to three stages, a barrier after each but the last: the pair rows and wall
+  // contacts read every particle's record, the gather reads every entry's result. The records
+  // stage runs only where kick_and_drift has not written them (after a rebuild, on a fresh
+  // state): within a run of steps the region has two stages and one barrier. Each stage shares
+  // its chunks (core/chunk_queue.hpp).
+#pragma omp parallel reduction(max : max_fraction, max_speed2) \
+    reduction(+ : handed_back, walls_handed_back) if (parallel)
   {
     if (records) {
       record_chunks_.drain([&](long first, long end) {
@@ -144,7 +164,7 @@ void Simulation::compute_forces(double drift, bool close_step) {
     }
     contact_chunks_.drain([&](long first, long end) {
       max_fraction = std::max({max_fraction, compute_pair_forces(drift, {first, end}, handed_back),
-                               compute_wall_forces(drift, {first, end})});
+                               compute_wall_forces(drift, {first, end}, walls_handed_back)});
     });
 #pragma omp barrier
     particle_chunks_.drain([&](long first, long end) {
@@ -154,6 +174,7 @@ void Simulation::compute_forces(double drift, bool close_step) {
   }
   max_overlap_fraction_ = max_fraction;
   pairs_handed_to_scalar_law_ = handed_back;
+  walls_handed_to_scalar_law_ = walls_handed_back;
   gather_walls();
   if (close_step) {
     max_speed2_ = max_speed2;

@@ -103,21 +103,30 @@ class Simulation {
   // Pair entries the kernel handed back to the scalar law in the last force evaluation (contacts
   // that may have begun within the step); 0 when the scalar loop ran.
   long pairs_handed_to_scalar_law() const { return pairs_handed_to_scalar_law_; }
+  // The same for the wall contacts (the kernel's wall lanes).
+  long walls_handed_to_scalar_law() const { return walls_handed_to_scalar_law_; }
 
  private:
-  bool kick_and_drift();  // true: the neighbour list must be rebuilt
+  // true: the neighbour list must be rebuilt. records_written: whether it wrote the kernel's
+  // velocity records for the force evaluation that follows.
+  bool kick_and_drift(bool& records_written);
   // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
   // the first evaluation of a fresh state, when no contact spring may advance). close_step: end
-  // with the second half kick.
-  void compute_forces(double drift, bool close_step);
+  // with the second half kick. records_written: the kernel's velocity records are those of the
+  // current velocities and forces already (kick_and_drift wrote them, no rebuild since).
+  void compute_forces(double drift, bool close_step, bool records_written = false);
   // The stages of compute_forces, each on a chunk of particles taken by the calling thread inside
   // its parallel region (the *_walls ones serial after it).
   void prepare_pair_forces();  // serial, before the region
+  // views of the particles, the pair store and the records for the kernel (uses_pair_kernel())
+  SimdPairInput kernel_input(double drift);
   // the kernel's velocity records (only when uses_pair_kernel()); the rows read them after a
   // barrier
   void write_particle_records(double drift, IndexBlock block);
   double compute_pair_forces(double drift, IndexBlock block, long& handed_back);
-  double compute_wall_forces(double drift, IndexBlock block);
+  // the walls as the kernel's lanes read them (only when the kernel runs)
+  void prepare_wall_lanes();  // serial, before the region
+  double compute_wall_forces(double drift, IndexBlock block, long& handed_back);
   void gather_particles(IndexBlock block);
   void gather_walls();
   double half_kick_particles(IndexBlock block);
@@ -150,10 +159,12 @@ class Simulation {
   // touch in the step), one slot per entry.
   SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
   std::vector<uint32_t> deferred_pairs_;
-  std::vector<uint32_t> entry_owners_;    // per pair entry: its first particle (for the kernel)
-  std::vector<double> particle_records_;  // the kernel's per-particle velocity records
+  std::vector<uint32_t> entry_owners_;       // per pair entry: its first particle (for the kernel)
+  std::vector<double> particle_records_;     // the kernel's per-particle velocity records
+  std::vector<uint32_t> wall_entry_owners_;  // per wall entry: its particle (for the kernel)
+  std::vector<SimdWallState> wall_lane_state_;  // per wall, for the kernel's wall lanes
   int one_material_ = -1;  // the material of every particle, or -1 where they differ (kernel)
-  long pairs_handed_to_scalar_law_ = 0;
+  long pairs_handed_to_scalar_law_ = 0, walls_handed_to_scalar_law_ = 0;
   // Who takes which particles in compute_forces' three stages (records; pair rows and wall
   // contacts; gather and half kick): planned afresh at each call.
   ChunkQueue record_chunks_, contact_chunks_, particle_chunks_;

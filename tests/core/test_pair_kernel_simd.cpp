@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <random>
@@ -127,6 +129,19 @@ bool cpu_has(const char* isa) {
   return true;
 }
 
+// Runs `run(isa)` for AVX2 and AVX-512 where this CPU has them and expects each to end in the
+// state, and to hand back the contacts, of the SSE2 kernel's run.
+template <class Result, class Run>
+void expect_wider_instruction_sets_match(const Result& sse2, Run run) {
+  for (const char* isa : {"avx2", "avx512"}) {
+    if (!cpu_has(isa)) continue;
+    const Result r = run(isa);
+    EXPECT_EQ(r.kernel, isa);
+    EXPECT_EQ(r.handed_back, sse2.handed_back);
+    expect_identical(sse2, r);
+  }
+}
+
 constexpr long pile_steps = 8000;
 
 }  // namespace
@@ -148,13 +163,8 @@ TEST(PairKernelSimd, EveryInstructionSetMatchesTheScalarLaw) {
 #ifndef __FMA__
   expect_identical(scalar, sse2);
 #endif
-  for (const char* isa : {"avx2", "avx512"}) {
-    if (!cpu_has(isa)) continue;
-    const PileResult r = run_pile(isa, 1, pile_steps);
-    EXPECT_EQ(r.kernel, isa);
-    EXPECT_EQ(r.handed_back, sse2.handed_back);
-    expect_identical(sse2, r);
-  }
+  expect_wider_instruction_sets_match(sse2,
+                                      [](const char* isa) { return run_pile(isa, 1, pile_steps); });
 }
 
 TEST(PairKernelSimd, OneMaterialMatchesTheScalarLawOnEveryInstructionSet) {
@@ -165,12 +175,8 @@ TEST(PairKernelSimd, OneMaterialMatchesTheScalarLawOnEveryInstructionSet) {
 #ifndef __FMA__
   expect_identical(scalar, sse2);
 #endif
-  for (const char* isa : {"avx2", "avx512"}) {
-    if (!cpu_has(isa)) continue;
-    const PileResult r = run_pile(isa, 1, pile_steps / 2, true);
-    EXPECT_EQ(r.kernel, isa);
-    expect_identical(sse2, r);
-  }
+  expect_wider_instruction_sets_match(
+      sse2, [](const char* isa) { return run_pile(isa, 1, pile_steps / 2, true); });
   // and the mixed pile differs from it (the materials reach the law)
   const PileResult mixed = run_pile("sse2", 1, pile_steps / 2);
   EXPECT_NE(0, std::memcmp(mixed.particles.position.data(), sse2.particles.position.data(),
@@ -190,6 +196,126 @@ TEST(PairKernelSimd, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
   EXPECT_EQ(one.handed_back, three.handed_back);
   expect_identical(one, two);
   expect_identical(one, three);
+}
+
+// The wall contacts through the kernel's lanes against the scalar wall law. Beads of two
+// materials in a cylinder, on a floor and a small shelf (a rectangle whose edges beads touch),
+// pressed by a lid with mass that an external force drives down (its velocity is integrated, so
+// the lanes' wall velocities, wall mass and end-of-step estimate all count); beads are thrown in
+// with random velocities, so contacts with the walls begin inside steps and are handed back.
+struct WallPileResult {
+  std::string kernel;
+  ParticleStore particles;
+  WallContacts contacts;
+  std::vector<Wall> walls;
+  long touching = 0;     // wall contacts with F_n > 0, summed over the steps
+  long handed_back = 0;  // wall contacts handed to the scalar law, summed over the steps
+  long by_wall[4] = {};  // touching contacts per wall, summed over the steps
+};
+
+WallPileResult run_wall_pile(const char* kernel, int threads, long steps) {
+  KernelChoice choice(kernel);
+  omp_set_num_threads(threads);
+  std::mt19937_64 rng(5);
+  auto jitter = [&](double half_width) { return half_width * (2.0 * uniform01(rng) - 1.0); };
+  constexpr double spacing = 1.9996e-3, cylinder_radius = spacing * 2.2360680 + 0.9996e-3,
+                   axis = 7.0e-3;
+  ParticleStore p;
+  uint32_t id = 0;
+  for (int layer = 0; layer < 8; ++layer)
+    for (int a = -3; a <= 3; ++a)
+      for (int b = -3; b <= 3; ++b) {
+        const Vec3 centre{axis + spacing * a + jitter(2e-7), axis + spacing * b + jitter(2e-7),
+                          0.9996e-3 + spacing * layer};
+        if (std::hypot(centre.x - axis, centre.y - axis) > cylinder_radius - 0.99e-3) continue;
+        const bool second = id % 3 == 1;
+        p.add(id++, second ? 1 : 0, 1.0e-3 + jitter(2e-7),
+              second ? 1.5 * glass_density : glass_density, centre,
+              {jitter(0.2), jitter(0.2), jitter(0.2)},
+              {jitter(300.0), jitter(300.0), jitter(300.0)}, false);
+      }
+  Wall cylinder;
+  cylinder.shape = WallShape::cylinder;
+  cylinder.point = {axis, axis, 0.0};
+  cylinder.radius = cylinder_radius;
+  finish_wall_geometry(cylinder);
+  Wall shelf;
+  shelf.shape = WallShape::rectangle;
+  shelf.point = {axis, axis, 0.9996e-3 + 1.5 * spacing};  // between the second and third layers
+  shelf.normal = {0, 0, 1};
+  shelf.half_u = shelf.half_v = 1.6e-3;
+  finish_wall_geometry(shelf);
+  Wall lid = plane_wall({0, 0, 1.9996e-3 + 7 * spacing}, {0, 0, -1});
+  lid.mass = 0.01;  // kg
+  lid.velocity = {0, 0, -0.05};
+  lid.external_force = {0, 0, -20.0};  // N
+  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}), cylinder, shelf, lid};
+  for (Wall& w : walls) w.material = 2;
+  Simulation sim(std::move(p), walls, mixed_table(),
+                 settings_for(0.995e-3, 0.4, 0.1, {0, 0, -9.81}));
+  WallPileResult r;
+  r.kernel = sim.pair_kernel_name();
+  for (long s = 0; s < steps; ++s) {
+    sim.step();
+    const WallContacts& c = sim.wall_contacts();
+    r.touching += std::count_if(c.normal_force.begin(), c.normal_force.end(),
+                                [](double f) { return f > 0.0; });
+    r.handed_back += sim.walls_handed_to_scalar_law();
+    for (size_t e = 0; e < c.size(); ++e) r.by_wall[c.wall[e]] += c.normal_force[e] > 0.0;
+  }
+  r.particles = sim.particles();
+  r.contacts = sim.wall_contacts();
+  omp_set_num_threads(omp_get_num_procs());
+  return r;
+}
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expect_identical(const WallPileResult& a, const WallPileResult& b) {
+  SCOPED_TRACE(a.kernel + " against " + b.kernel);
+  EXPECT_EQ(a.particles.id, b.particles.id);
+  EXPECT_TRUE(same_bytes(a.particles.position, b.particles.position));
+  EXPECT_TRUE(same_bytes(a.particles.velocity, b.particles.velocity));
+  EXPECT_TRUE(same_bytes(a.particles.angular_velocity, b.particles.angular_velocity));
+  EXPECT_TRUE(same_bytes(a.particles.force, b.particles.force));
+  EXPECT_TRUE(same_bytes(a.particles.torque, b.particles.torque));
+  EXPECT_TRUE(same_bytes(a.contacts.wall, b.contacts.wall));
+  EXPECT_TRUE(same_bytes(a.contacts.sliding_spring, b.contacts.sliding_spring));
+  EXPECT_TRUE(same_bytes(a.contacts.force_on_particle, b.contacts.force_on_particle));
+  EXPECT_TRUE(same_bytes(a.contacts.torque_on_particle, b.contacts.torque_on_particle));
+  EXPECT_TRUE(same_bytes(a.contacts.normal_stiffness, b.contacts.normal_stiffness));
+  EXPECT_TRUE(same_bytes(a.contacts.normal_force, b.contacts.normal_force));
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (size_t k = 0; k < a.walls.size(); ++k) {
+    EXPECT_EQ(0, std::memcmp(&a.walls[k].point, &b.walls[k].point, sizeof(Vec3))) << k;
+    EXPECT_EQ(0, std::memcmp(&a.walls[k].velocity, &b.walls[k].velocity, sizeof(Vec3))) << k;
+    EXPECT_EQ(0, std::memcmp(&a.walls[k].force, &b.walls[k].force, sizeof(Vec3))) << k;
+  }
+}
+
+constexpr long wall_pile_steps = 6000;
+
+TEST(PairKernelSimd, WallContactsMatchTheScalarWallLawOnEveryInstructionSet) {
+  const WallPileResult scalar = run_wall_pile("off", 1, wall_pile_steps);
+  EXPECT_EQ(scalar.kernel, "scalar");
+  EXPECT_EQ(scalar.handed_back, 0);
+  // Every wall holds beads at the end (the shelf by its face or its edges), and the lid with
+  // mass has moved under its load.
+  for (int k = 0; k < 4; ++k) EXPECT_GT(scalar.by_wall[k], 0) << "no bead touches wall " << k;
+  EXPECT_GT(scalar.touching, 50L * wall_pile_steps) << "too few wall contacts";
+  const WallPileResult sse2 = run_wall_pile("sse2", 1, wall_pile_steps);
+  EXPECT_GT(sse2.handed_back, 20) << "no wall contact was handed to the scalar law";
+  EXPECT_LT(sse2.handed_back, sse2.touching / 100);
+#ifndef __FMA__
+  expect_identical(scalar, sse2);
+#endif
+  expect_wider_instruction_sets_match(
+      sse2, [](const char* isa) { return run_wall_pile(isa, 1, wall_pile_steps); });
+  const WallPileResult two = run_wall_pile("auto", 2, wall_pile_steps);
+  expect_identical(sse2, two);
 }
 
 TEST(PairKernelSimd, UnknownOrUnsupportedChoiceIsRefusedByName) {

@@ -1,0 +1,184 @@
+// The lane primitives of the vectorised contact kernel (core/pair_kernel_simd.cpp): a vector of
+// 8 doubles, 3-vectors of them with the operations of core/vec3.hpp in the same association
+// order, loads of per-entry and per-particle data into lanes, the 8 x 8 transpose, and the
+// particle records' two halves. Included only by pair_kernel_simd.cpp, inside its
+// per-instruction-set namespace and an anonymous one: everything here has internal linkage, so
+// nothing compiled for one instruction set can be linked into code that runs on another.
+// (No include guard and no includes of its own: it is a part of that one file.)
+#ifndef GRAINLAB_SIMD_NS
+#error "core/simd_lanes.hpp is part of core/pair_kernel_simd.cpp"
+#endif
+
+#define GRAINLAB_LANES_INLINE [[gnu::always_inline]] inline
+
+constexpr int lanes = 8;
+using vd = double __attribute__((vector_size(64)));
+using vmask = long long __attribute__((vector_size(64)));  // per lane: -1 true, 0 false
+
+GRAINLAB_LANES_INLINE vd splat(double x) {  // x in every lane
+  return vd{x, x, x, x, x, x, x, x};
+}
+
+GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
+#if defined(__AVX512F__)
+  return _mm512_mask_sqrt_pd(a, 0xFF, a);  // all lanes (the unmasked form warns in GCC 12)
+#elif defined(__AVX__)
+  const __m256d lo = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 0, 1, 2, 3));
+  const __m256d hi = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 4, 5, 6, 7));
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+  const __m128d q0 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 0, 1));
+  const __m128d q1 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 2, 3));
+  const __m128d q2 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 4, 5));
+  const __m128d q3 = _mm_sqrt_pd(__builtin_shufflevector(a, a, 6, 7));
+  const auto lo = __builtin_shufflevector(q0, q1, 0, 1, 2, 3);
+  const auto hi = __builtin_shufflevector(q2, q3, 0, 1, 2, 3);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#endif
+}
+
+// A 3-vector per lane, with the operations of core/vec3.hpp in the same association order.
+struct V3 {
+  vd x, y, z;
+};
+GRAINLAB_LANES_INLINE V3 operator+(const V3& a, const V3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+GRAINLAB_LANES_INLINE V3 operator-(const V3& a, const V3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+GRAINLAB_LANES_INLINE V3 operator*(vd s, const V3& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+GRAINLAB_LANES_INLINE V3 operator*(double s, const V3& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+GRAINLAB_LANES_INLINE vd dot(const V3& a, const V3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+GRAINLAB_LANES_INLINE V3 cross(const V3& a, const V3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+GRAINLAB_LANES_INLINE V3 select(vmask m, const V3& a, const V3& b) {
+  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
+}
+
+// The entry index of each lane, with the offsets of its fields: index for a scalar field,
+// 3 index for a Vec3 field. With AVX2 and AVX-512 the lanes are filled by gather instructions
+// (plain loads: the values are bit for bit those of scalar loads).
+struct LaneIndex {
+  const uint32_t* index;
+#if defined(__AVX2__)
+  __m256i times1, times3;  // 8 x int32
+#endif
+};
+GRAINLAB_LANES_INLINE LaneIndex lane_index(const uint32_t* index) {
+  LaneIndex r{};
+  r.index = index;
+#if defined(__AVX2__)
+  r.times1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
+  r.times3 = _mm256_add_epi32(_mm256_add_epi32(r.times1, r.times1), r.times1);
+#endif
+  return r;
+}
+// Lane l of the result: base[stride * index[l] + offset] (stride 1 or 3).
+GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int stride,
+                                    int offset) {
+#if defined(__AVX512F__)
+  // (the masked form with all lanes on: the unmasked one warns in GCC 12)
+  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xFF, stride == 3 ? x.times3 : x.times1,
+                                  base + offset, 8);
+#elif defined(__AVX2__)
+  // (the masked form with all lanes on, as for AVX-512)
+  const __m256i index = stride == 3 ? x.times3 : x.times1;
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d lo = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
+                                              _mm256_castsi256_si128(index), all, 8);
+  const __m256d hi = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
+                                              _mm256_extracti128_si256(index, 1), all, 8);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+  vd r{};
+  for (int l = 0; l < lanes; ++l) r[l] = base[size_t{x.index[l]} * stride + offset];
+  return r;
+#endif
+}
+GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
+  return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
+}
+GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v, int l) {
+  double* out = base + size_t{index} * 3;
+  out[0] = v.x[l];
+  out[1] = v.y[l];
+  out[2] = v.z[l];
+}
+
+// 8 x 8 transpose: value[v][l] = r[l][v] (rows of 8 values per lane to one vector per value, or
+// back: the transpose is its own inverse). Pairs of rows, then quads, then halves.
+GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) {
+  vd a[lanes], b[lanes];
+  for (int k = 0; k < 4; ++k) {
+    a[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+    a[2 * k + 1] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+  }
+  for (int h = 0; h < 2; ++h)            // rows 0-3, rows 4-7
+    for (int odd = 0; odd < 2; ++odd) {  // values 0 2 4 6, values 1 3 5 7
+      const vd& x = a[4 * h + odd];
+      const vd& y = a[4 * h + 2 + odd];
+      b[4 * h + 2 * odd] = __builtin_shufflevector(x, y, 0, 1, 8, 9, 4, 5, 12, 13);
+      b[4 * h + 2 * odd + 1] = __builtin_shufflevector(x, y, 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  // b[2 odd + s] (rows 0-3) and b[4 + 2 odd + s] (rows 4-7) hold values v and v + 4 with
+  // v = odd + 2 s
+  for (int odd = 0; odd < 2; ++odd)
+    for (int s = 0; s < 2; ++s) {
+      const vd& lo = b[2 * odd + s];
+      const vd& hi = b[4 + 2 * odd + s];
+      const int v = odd + 2 * s;
+      value[v] = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 8, 9, 10, 11);
+      value[v + 4] = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    }
+}
+
+// The velocities of each lane's particle from its record (particle_records): per lane a load of
+// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. The
+// two halves are loaded where they are first needed, which keeps fewer vectors live.
+using vd4 = double __attribute__((vector_size(32)));
+struct RecordHead {  // values 0..7
+  V3 velocity, spin;
+  vd velocity_at_end_x, velocity_at_end_y;
+};
+GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const uint32_t* index) {
+  vd r[lanes];  // r[l]: values 0..7 of lane l
+  for (int l = 0; l < lanes; ++l)
+    __builtin_memcpy(&r[l], record + size_t{index[l]} * particle_record_size, sizeof r[l]);
+  vd value[lanes];
+  transpose8(r, value);
+  return {{value[0], value[1], value[2]}, {value[3], value[4], value[5]}, value[6], value[7]};
+}
+struct RecordTail {  // values 8..11
+  vd velocity_at_end_z;
+  V3 spin_at_end;
+};
+GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const uint32_t* index) {
+  vd4 q[lanes];  // q[l]: values 8..11 of lane l
+  for (int l = 0; l < lanes; ++l)
+    __builtin_memcpy(&q[l], record + size_t{index[l]} * particle_record_size + 8, sizeof q[l]);
+  // 4 x 8 transpose: lanes l and l + 4 side by side, then pairs and quads as above.
+  vd c[4], d[4], value[4];
+  for (int k = 0; k < 4; ++k)
+    c[k] = __builtin_shufflevector(q[k], q[k + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+  d[0] = __builtin_shufflevector(c[0], c[1], 0, 8, 2, 10, 4, 12, 6, 14);
+  d[1] = __builtin_shufflevector(c[0], c[1], 1, 9, 3, 11, 5, 13, 7, 15);
+  d[2] = __builtin_shufflevector(c[2], c[3], 0, 8, 2, 10, 4, 12, 6, 14);
+  d[3] = __builtin_shufflevector(c[2], c[3], 1, 9, 3, 11, 5, 13, 7, 15);
+  value[0] = __builtin_shufflevector(d[0], d[2], 0, 1, 8, 9, 4, 5, 12, 13);
+  value[2] = __builtin_shufflevector(d[0], d[2], 2, 3, 10, 11, 6, 7, 14, 15);
+  value[1] = __builtin_shufflevector(d[1], d[3], 0, 1, 8, 9, 4, 5, 12, 13);
+  value[3] = __builtin_shufflevector(d[1], d[3], 2, 3, 10, 11, 6, 7, 14, 15);
+  return {value[0], {value[1], value[2], value[3]}};
+}
+
+GRAINLAB_LANES_INLINE void store_zero3(double* out) {
+  out[0] = out[1] = out[2] = 0.0;
+}
