@@ -25,6 +25,24 @@ inline Vec3 wall_velocity_at_end(const Wall& w, double dt) {
                       : w.velocity;
 }
 
+// 1/M of a wall: a wall with mass (a slider) is a second body, m* = m_p M / (m_p + M); a fixed
+// wall has M = infinity.
+inline double wall_inverse_mass(const Wall& w) {
+  return w.mass > 0.0 ? 1.0 / w.mass : 0.0;
+}
+
+// A candidate apart from its wall (or a fixed particle on a fixed wall): no force, and the
+// contact forgets its history.
+template <bool R, bool T, bool RF>
+void clear_wall_entry(WallContacts& c, uint32_t e) {
+  c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
+  c.normal_stiffness[e] = c.normal_force[e] = 0.0;
+  c.sliding_spring[e] = Vec3{};
+  if constexpr (R) c.rolling_angle[e] = Vec3{};
+  if constexpr (T) c.twisting_angle[e] = 0.0;
+  if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+}
+
 // The wall candidate e of particle i: writes its result and history and returns overlap / r, 0
 // when the sphere does not touch the wall.
 template <bool R, bool T, bool RF>
@@ -34,17 +52,10 @@ double wall_entry(const ParticleStore& p, const std::vector<Wall>& walls, const 
   const Wall& w = walls[c.wall[e]];
   const WallGap g = wall_gap(w, p.position[i]);
   const double overlap = r - g.gap;
-  // A wall with mass (a slider) is a second body: m* = m_p M / (m_p + M); a fixed wall has
-  // M = infinity. A fixed particle touches only walls that have mass.
-  const double wall_inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;
-  const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass;
+  // A fixed particle touches only walls that have mass.
+  const double inverse_mass_sum = p.inverse_mass[i] + wall_inverse_mass(w);
   if (overlap <= 0.0 || inverse_mass_sum == 0.0) {
-    c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};
-    c.normal_stiffness[e] = c.normal_force[e] = 0.0;
-    c.sliding_spring[e] = Vec3{};
-    if constexpr (R) c.rolling_angle[e] = Vec3{};
-    if constexpr (T) c.twisting_angle[e] = 0.0;
-    if constexpr (RF) c.rolling_force_displacement[e] = Vec3{};
+    clear_wall_entry<R, T, RF>(c, e);
     return 0.0;
   }
   ContactKinematics k;
@@ -139,9 +150,7 @@ double wall_forces_simd(const SimdPairKernel& kernel, const SimdPairInput& in,
     const WallGap g = wall_gap(walls[k], p.position[i]);
     const double overlap = r - g.gap;
     if (overlap <= 0.0 || p.inverse_mass[i] + lanes.walls[k].inverse_mass == 0.0) {
-      c.force_on_particle[e] = c.torque_on_particle[e] = Vec3{};  // as wall_entry
-      c.normal_stiffness[e] = c.normal_force[e] = 0.0;
-      c.sliding_spring[e] = Vec3{};
+      clear_wall_entry<false, false, false>(c, e);
       continue;
     }
     const int l = b.count++;
@@ -175,7 +184,7 @@ void Simulation::prepare_wall_lanes() {
     s.velocity[0] = w.velocity.x, s.velocity[1] = w.velocity.y, s.velocity[2] = w.velocity.z;
     s.velocity_at_end[0] = at_end.x, s.velocity_at_end[1] = at_end.y;
     s.velocity_at_end[2] = at_end.z;
-    s.inverse_mass = w.mass > 0.0 ? 1.0 / w.mass : 0.0;  // as wall_entry
+    s.inverse_mass = wall_inverse_mass(w);
     s.material = w.material;
   }
 }
