@@ -2,12 +2,20 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <thread>
 #include <vector>
 
 #include "command.hpp"
 #include "grainlab/version.hpp"
+#include "io/wait_policy.hpp"
 
 namespace {
 
@@ -16,15 +24,58 @@ namespace {
 // of the cores, the spinning thread keeps its core while the thread it waits for shares the
 // other, and a run takes 2.4 times as long (docs/performance.md sec. 15). Sleeping at once
 // (OMP_WAIT_POLICY=passive) is safe but pays a wake-up at every barrier (up to 1.2x slower on
-// an idle machine). 1,000 rounds keep the idle speed within the noise and a busy machine at
-// less than twice the idle time. libgomp reads its settings when it is loaded, before main, so
-// the setting takes a restart of the program with it in the environment; a user's own
-// OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
+// an idle machine). 1,000 rounds keep the idle speed within the noise, but a run still took
+// 2.25x its idle time with a busy loop on the other core (sec. 18). So `run` and `prepare`
+// measure first, for 0.1 s, how many CPUs other processes keep busy, and let the threads sleep
+// at once when they would not each find a free one (io/wait_policy.hpp). libgomp reads its
+// settings when it is loaded, before main, so the setting takes a restart of the program with it
+// in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
 constexpr const char* barrier_spin_rounds = "1000";
 
-void bounded_spin_waiting(char** argv) {
+std::optional<grainlab::CpuTimes> read_cpu_times() {
+  std::ifstream in("/proc/stat");
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return grainlab::parse_cpu_times(text.str());
+}
+
+// The OpenMP threads a run will start: --threads N, else OMP_NUM_THREADS, else one per CPU.
+int requested_threads(int argc, char** argv, int cpus) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string_view a = argv[k];
+    if (a == "--threads" && k + 1 < argc) return std::max(1, std::atoi(argv[k + 1]));
+    if (a.starts_with("--threads=")) return std::max(1, std::atoi(argv[k] + 10));
+  }
+  if (const char* n = std::getenv("OMP_NUM_THREADS")) return std::max(1, std::atoi(n));
+  return cpus;
+}
+
+void choose_barrier_waiting(int argc, char** argv) {
+  using namespace grainlab;
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  if (setenv("GOMP_SPINCOUNT", barrier_spin_rounds, 0) != 0) return;
+  WaitPolicy policy = WaitPolicy::bounded_spin;
+  const std::string_view command = argc > 1 ? argv[1] : "";
+  if (command == "run" || command == "prepare") {  // the long runs
+    const int cpus = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+    const int threads = requested_threads(argc, argv, cpus);
+    const std::optional<CpuTimes> before = read_cpu_times();
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const std::optional<CpuTimes> after = read_cpu_times();
+    if (threads > 1 && before && after) {
+      const double busy = busy_cpus_between(*before, *after, cpus);
+      policy = choose_wait_policy(threads, cpus, busy);
+      const bool quiet = std::find_if(argv, argv + argc, [](const char* a) {
+                           return std::string_view(a) == "--quiet";
+                         }) != argv + argc;
+      if (policy == WaitPolicy::passive && !quiet)
+        fmt::print(stderr, "grainlab: {}\n", describe_wait_choice(policy, threads, cpus, busy));
+    }
+  }
+  const bool set = policy == WaitPolicy::passive
+                       ? setenv("OMP_WAIT_POLICY", "passive", 0) == 0
+                       : setenv("GOMP_SPINCOUNT", barrier_spin_rounds, 0) == 0;
+  if (!set) return;
   execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default
 }
 
@@ -32,7 +83,7 @@ void bounded_spin_waiting(char** argv) {
 
 int main(int argc, char** argv) {
   using namespace grainlab::app;
-  bounded_spin_waiting(argv);
+  choose_barrier_waiting(argc, argv);
   CLI::App app{"grainlab: discrete element virtual granular laboratory"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("grainlab ") + grainlab::version_string);

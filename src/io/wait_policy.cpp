@@ -1,0 +1,54 @@
+#include "io/wait_policy.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
+namespace grainlab {
+
+std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat) {
+  std::istringstream lines(proc_stat);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::string name;
+    fields >> name;
+    if (name != "cpu") continue;  // the total over all CPUs, not cpu0, cpu1, ...
+    // user nice system idle iowait irq softirq steal (guest time is already in user)
+    std::vector<double> v;
+    double x;
+    while (v.size() < 8 && fields >> x) v.push_back(x);
+    if (v.size() < 5) return std::nullopt;
+    v.resize(8, 0.0);
+    CpuTimes t;
+    t.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];
+    t.total = t.busy + v[3] + v[4];
+    return t;
+  }
+  return std::nullopt;
+}
+
+double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus) {
+  const double total = after.total - before.total;
+  if (!(total > 0.0)) return 0.0;
+  return std::clamp((after.busy - before.busy) / total, 0.0, 1.0) * cpus;
+}
+
+WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
+  const double free_cpus = cpus - busy_cpus;
+  return threads > 1 && free_cpus < threads - 0.5 ? WaitPolicy::passive : WaitPolicy::bounded_spin;
+}
+
+std::string describe_wait_choice(WaitPolicy policy, int threads, int cpus, double busy_cpus) {
+  if (policy == WaitPolicy::passive)
+    return fmt::format(
+        "other processes keep {:.1f} of {} CPUs busy: the {} threads sleep when they wait "
+        "(OMP_WAIT_POLICY=passive; set it or GOMP_SPINCOUNT yourself to choose)",
+        busy_cpus, cpus, threads);
+  return fmt::format("{:.1f} of {} CPUs busy: the {} threads spin 1,000 rounds when they wait",
+                     busy_cpus, cpus, threads);
+}
+
+}  // namespace grainlab

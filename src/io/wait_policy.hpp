@@ -1,0 +1,39 @@
+// How OpenMP threads wait at a barrier, chosen when a long run starts from how busy the machine is.
+//
+// Spinning a while before sleeping is the fastest on an idle machine: a sleeping thread costs a
+// wake-up of tens of microseconds at every barrier on a VM, up to 1.2x on the step. It collapses
+// when another process holds a core: the thread that shares that core is preempted, and the
+// others spin and then sleep and wake at every barrier; the reference triaxial test took 2.25x
+// its idle time with a busy loop on the other core. Threads that sleep at once leave the other
+// process its share and lose far less (docs/performance.md sec. 15 and 18). libgomp reads its
+// policy once, when it is loaded, so grainlab measures the load before its OpenMP runtime starts
+// and restarts itself with the policy in its environment (apps/grainlab/main.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace grainlab {
+
+// Busy and total jiffies of all CPUs together: the "cpu" line of /proc/stat.
+struct CpuTimes {
+  double busy = 0.0;   // user, nice, system, irq, softirq, steal
+  double total = 0.0;  // the above with idle and iowait
+};
+
+// The "cpu" line of the text of /proc/stat; nullopt when it has none or it is malformed.
+std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat);
+
+// How many CPUs were busy on average between two readings of /proc/stat, out of `cpus`.
+double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus);
+
+// The wait policy for `threads` OpenMP threads on `cpus` CPUs of which `busy_cpus` are already
+// busy with other work: spin a while when the threads find a free CPU each (within half a
+// CPU), sleep at once otherwise.
+enum class WaitPolicy { bounded_spin, passive };
+WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
+
+// One line for the user: what was measured and what was chosen.
+std::string describe_wait_choice(WaitPolicy policy, int threads, int cpus, double busy_cpus);
+
+}  // namespace grainlab
