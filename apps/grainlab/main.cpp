@@ -1,5 +1,6 @@
 // grainlab: a virtual granular laboratory (DEM). See README.md and docs/.
 #include <fmt/format.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -32,12 +33,23 @@ namespace {
 // in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
 constexpr const char* barrier_spin_rounds = "1000";
 
-std::optional<grainlab::CpuTimes> read_cpu_times() {
+std::optional<grainlab::CpuTimes> read_cpu_times(const std::vector<int>& cpus) {
   std::ifstream in("/proc/stat");
   if (!in) return std::nullopt;
   std::ostringstream text;
   text << in.rdbuf();
-  return grainlab::parse_cpu_times(text.str());
+  return grainlab::parse_cpu_times(text.str(), cpus);
+}
+
+// The CPUs this process may run on (its affinity mask; in a container or under taskset not all
+// of the machine's), as OpenMP counts them for its default thread count.
+std::vector<int> usable_cpus() {
+  std::vector<int> cpus;
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0)
+    for (int k = 0; k < CPU_SETSIZE; ++k)
+      if (CPU_ISSET(k, &set)) cpus.push_back(k);
+  return cpus;
 }
 
 // The OpenMP threads a run will start: --threads N, else OMP_NUM_THREADS, else one per CPU.
@@ -57,12 +69,14 @@ void choose_barrier_waiting(int argc, char** argv) {
   WaitPolicy policy = WaitPolicy::bounded_spin;
   const std::string_view command = argc > 1 ? argv[1] : "";
   if (command == "run" || command == "prepare") {  // the long runs
-    const int cpus = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+    const std::vector<int> usable = usable_cpus();
+    const int cpus = usable.empty() ? static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)))
+                                    : static_cast<int>(usable.size());
     const int threads = requested_threads(argc, argv, cpus);
-    const std::optional<CpuTimes> before = read_cpu_times();
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    const std::optional<CpuTimes> after = read_cpu_times();
-    if (threads > 1 && before && after) {
+    const std::optional<CpuTimes> before = threads > 1 ? read_cpu_times(usable) : std::nullopt;
+    if (before) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const std::optional<CpuTimes> after = before ? read_cpu_times(usable) : std::nullopt;
+    if (before && after) {
       const double busy = busy_cpus_between(*before, *after, cpus);
       policy = choose_wait_policy(threads, cpus, busy);
       const bool quiet = std::find_if(argv, argv + argc, [](const char* a) {

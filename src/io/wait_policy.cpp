@@ -8,26 +8,47 @@
 
 namespace grainlab {
 
-std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat) {
+namespace {
+
+// The jiffies of one line "cpu..." after its name: user nice system idle iowait irq softirq
+// steal (guest time is already in user); nullopt when it has fewer than the first five.
+std::optional<CpuTimes> line_times(std::istringstream& fields) {
+  std::vector<double> v;
+  double x;
+  while (v.size() < 8 && fields >> x) v.push_back(x);
+  if (v.size() < 5) return std::nullopt;
+  v.resize(8, 0.0);
+  CpuTimes t;
+  t.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];
+  t.total = t.busy + v[3] + v[4];
+  return t;
+}
+
+}  // namespace
+
+std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
+                                        const std::vector<int>& cpus) {
   std::istringstream lines(proc_stat);
   std::string line;
+  CpuTimes sum;
+  size_t found = 0;
   while (std::getline(lines, line)) {
     std::istringstream fields(line);
     std::string name;
     fields >> name;
-    if (name != "cpu") continue;  // the total over all CPUs, not cpu0, cpu1, ...
-    // user nice system idle iowait irq softirq steal (guest time is already in user)
-    std::vector<double> v;
-    double x;
-    while (v.size() < 8 && fields >> x) v.push_back(x);
-    if (v.size() < 5) return std::nullopt;
-    v.resize(8, 0.0);
-    CpuTimes t;
-    t.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];
-    t.total = t.busy + v[3] + v[4];
-    return t;
+    const bool wanted =
+        cpus.empty() ? name == "cpu" : std::any_of(cpus.begin(), cpus.end(), [&](int k) {
+          return name == "cpu" + std::to_string(k);
+        });
+    if (!wanted) continue;
+    const std::optional<CpuTimes> t = line_times(fields);
+    if (!t) return std::nullopt;
+    sum.busy += t->busy;
+    sum.total += t->total;
+    ++found;
   }
-  return std::nullopt;
+  if (found != (cpus.empty() ? 1 : cpus.size())) return std::nullopt;
+  return sum;
 }
 
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus) {

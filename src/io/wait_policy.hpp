@@ -12,19 +12,23 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace grainlab {
 
-// Busy and total jiffies of all CPUs together: the "cpu" line of /proc/stat.
+// Busy and total jiffies of a set of CPUs together, from /proc/stat.
 struct CpuTimes {
   double busy = 0.0;   // user, nice, system, irq, softirq, steal
   double total = 0.0;  // the above with idle and iowait
 };
 
-// The "cpu" line of the text of /proc/stat; nullopt when it has none or it is malformed.
-std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat);
+// From the text of /proc/stat, the sum of the lines "cpuK" for K in `cpus` (the CPUs this process
+// may run on: in a container or under taskset these are not all of the machine's), or the total
+// line "cpu" when `cpus` is empty; nullopt when a line is missing or malformed.
+std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
+                                        const std::vector<int>& cpus = {});
 
-// How many CPUs were busy on average between two readings of /proc/stat, out of `cpus`.
+// How many of `cpus` CPUs were busy on average between two readings of the same set.
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus);
 
 // The wait policy for `threads` OpenMP threads on `cpus` CPUs of which `busy_cpus` are already

@@ -25,6 +25,22 @@ TEST(WaitPolicy, ParsesTheTotalCpuLineOfProcStat) {
   EXPECT_FALSE(parse_cpu_times("cpu 1 2\n"));                 // too short
 }
 
+TEST(WaitPolicy, SumsOnlyTheCpusTheProcessMayRunOn) {
+  const std::string text =
+      "cpu  100 0 0 300 0 0 0 0\n"
+      "cpu0 10 0 0 90 0 0 0 0\n"
+      "cpu1 20 0 0 80 0 0 0 0\n"
+      "cpu10 70 0 0 130 0 0 0 0\n";
+  const auto two = parse_cpu_times(text, {1, 10});  // cpu1 must not be taken for cpu10
+  ASSERT_TRUE(two);
+  EXPECT_DOUBLE_EQ(two->busy, 20 + 70);
+  EXPECT_DOUBLE_EQ(two->total, 100 + 200);
+  const auto one = parse_cpu_times(text, {0});
+  ASSERT_TRUE(one);
+  EXPECT_DOUBLE_EQ(one->busy, 10);
+  EXPECT_FALSE(parse_cpu_times(text, {0, 3}));  // cpu3 has no line
+}
+
 TEST(WaitPolicy, BusyCpusAreTheBusyShareOfTheElapsedJiffies) {
   // 2 CPUs, 200 jiffies elapsed in all, 100 of them busy: one CPU's worth
   EXPECT_DOUBLE_EQ(busy_cpus_between({50, 400}, {150, 600}, 2), 1.0);
