@@ -83,7 +83,7 @@ void choose_barrier_waiting(int argc, char** argv) {
                            return std::string_view(a) == "--quiet";
                          }) != argv + argc;
       if (policy == WaitPolicy::passive && !quiet)
-        fmt::print(stderr, "grainlab: {}\n", describe_wait_choice(policy, threads, cpus, busy));
+        fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
     }
   }
   const bool set = policy == WaitPolicy::passive

@@ -62,14 +62,11 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
   return threads > 1 && free_cpus < threads - 0.5 ? WaitPolicy::passive : WaitPolicy::bounded_spin;
 }
 
-std::string describe_wait_choice(WaitPolicy policy, int threads, int cpus, double busy_cpus) {
-  if (policy == WaitPolicy::passive)
-    return fmt::format(
-        "other processes keep {:.1f} of {} CPUs busy: the {} threads sleep when they wait "
-        "(OMP_WAIT_POLICY=passive; set it or GOMP_SPINCOUNT yourself to choose)",
-        busy_cpus, cpus, threads);
-  return fmt::format("{:.1f} of {} CPUs busy: the {} threads spin 1,000 rounds when they wait",
-                     busy_cpus, cpus, threads);
+std::string describe_passive_choice(int threads, int cpus, double busy_cpus) {
+  return fmt::format(
+      "other processes keep {:.1f} of {} CPUs busy: the {} threads sleep when they wait "
+      "(OMP_WAIT_POLICY=passive; set it or GOMP_SPINCOUNT yourself to choose)",
+      busy_cpus, cpus, threads);
 }
 
 }  // namespace grainlab

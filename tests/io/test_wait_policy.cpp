@@ -59,6 +59,7 @@ TEST(WaitPolicy, ThreadsSleepAtOnceOnlyWhenTheyWouldNotEachFindAFreeCpu) {
   EXPECT_EQ(choose_wait_policy(1, 2, 2.0), WaitPolicy::bounded_spin);
   EXPECT_EQ(choose_wait_policy(8, 16, 7.0), WaitPolicy::bounded_spin);
   EXPECT_EQ(choose_wait_policy(16, 16, 1.0), WaitPolicy::passive);
-  EXPECT_NE(describe_wait_choice(WaitPolicy::passive, 2, 2, 1.0).find("passive"),
-            std::string::npos);
+  const std::string said = describe_passive_choice(2, 2, 1.04);
+  EXPECT_NE(said.find("1.0 of 2 CPUs busy"), std::string::npos) << said;
+  EXPECT_NE(said.find("OMP_WAIT_POLICY=passive"), std::string::npos) << said;
 }
