@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace grainlab {
@@ -24,6 +26,19 @@ std::optional<CpuTimes> line_times(std::istringstream& fields) {
   return t;
 }
 
+// Whether a line named `name` is wanted: "cpu" (the total) when `cpus` is empty, else "cpuK"
+// for K in `cpus` (sorted, as the affinity mask lists them); one lookup per line, not a name
+// built per CPU (a server has hundreds of lines).
+bool wanted_cpu_line(std::string_view name, const std::vector<int>& cpus) {
+  if (!name.starts_with("cpu")) return false;
+  name.remove_prefix(3);
+  if (cpus.empty()) return name.empty();
+  int k = -1;
+  const auto [end, error] = std::from_chars(name.data(), name.data() + name.size(), k);
+  return error == std::errc{} && end == name.data() + name.size() &&
+         std::binary_search(cpus.begin(), cpus.end(), k);
+}
+
 }  // namespace
 
 std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
@@ -36,11 +51,7 @@ std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
     std::istringstream fields(line);
     std::string name;
     fields >> name;
-    const bool wanted =
-        cpus.empty() ? name == "cpu" : std::any_of(cpus.begin(), cpus.end(), [&](int k) {
-          return name == "cpu" + std::to_string(k);
-        });
-    if (!wanted) continue;
+    if (!wanted_cpu_line(name, cpus)) continue;
     const std::optional<CpuTimes> t = line_times(fields);
     if (!t) return std::nullopt;
     sum.busy += t->busy;

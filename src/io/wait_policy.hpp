@@ -23,9 +23,9 @@ struct CpuTimes {
   double total = 0.0;  // the above with idle and iowait
 };
 
-// From the text of /proc/stat, the sum of the lines "cpuK" for K in `cpus` (the CPUs this process
-// may run on: in a container or under taskset these are not all of the machine's), or the total
-// line "cpu" when `cpus` is empty; nullopt when a line is missing or malformed.
+// From the text of /proc/stat, the sum of the lines "cpuK" for K in `cpus`, sorted (the CPUs this
+// process may run on: in a container or under taskset these are not all of the machine's), or the
+// total line "cpu" when `cpus` is empty; nullopt when a line is missing or malformed.
 std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
                                         const std::vector<int>& cpus = {});
 
