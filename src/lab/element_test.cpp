@@ -66,7 +66,10 @@ nlohmann::json specimen_json(const Specimen& s) {
       {"compaction_restitution", s.compaction_restitution},
       {"equilibrium_reached", s.equilibrium_reached},
       {"target_solid_fraction_reached", s.target_reached},
-      {"simulated_time_s", s.simulated_time}};
+      {"simulated_time_s", s.simulated_time},
+      // the preparation's step and step count (null: the specimen was read from a file)
+      {"time_step_s", s.time_step > 0 ? nlohmann::json(s.time_step) : nlohmann::json(nullptr)},
+      {"steps", s.time_step > 0 ? nlohmann::json(s.steps) : nlohmann::json(nullptr)}};
 }
 
 Specimen obtain_specimen(const ElementTestConfig& c, Progress& progress,

@@ -50,10 +50,14 @@ struct SpecimenSettings {
   double dt_fraction = 0.1;
   double max_strain_rate = 10.0;  // 1/s, wall speed cap during compaction
   Compaction compaction = Compaction::walls;
-  double compaction_restitution = 0.3;  // e of every bead contact while compacting (faster rest)
-  double stress_tolerance = 0.005;      // equilibrium: wall stresses within 0.5 % of the target
-  double unbalanced_tolerance = 1e-4;   // and mean unbalanced / mean contact force below this
-  double max_time = 0.5;                // s simulated at most
+  // e of every bead contact while compacting (faster rest). Unset: the most damped value from
+  // most_damped_compaction_restitution up, in steps of 0.05, that is stable at the test's own
+  // step, so that the preparation runs at that step; set: that value, the step lowered as far
+  // as its contacts need (contact/stability.hpp).
+  std::optional<double> compaction_restitution;
+  double stress_tolerance = 0.005;     // equilibrium: wall stresses within 0.5 % of the target
+  double unbalanced_tolerance = 1e-4;  // and mean unbalanced / mean contact force below this
+  double max_time = 0.5;               // s simulated at most
   uint64_t seed = 1;
 
   double min_radius() const { return 0.5 * (diameter - diameter_tolerance); }  // m, smallest bead
@@ -64,10 +68,21 @@ struct SpecimenSettings {
 MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
                                     double min_radius);
 
+// The most damped restitution the preparation's contacts may have (a default, not a limit: a
+// config may set any compaction_restitution in (0, 1]).
+inline constexpr double most_damped_compaction_restitution = 0.3;
+
+// The bead restitution while compacting: compaction_restitution when set, else the most damped
+// value from most_damped_compaction_restitution up, in steps of 0.05, whose contacts a run at
+// `time_step` keeps stable (contact/stability.hpp); the measured one when no lower value is.
+double compaction_restitution(const SpecimenSettings& s, const PairTable& measured,
+                              double time_step, double min_radius);
+
 // The bead contacts of `measured` with their restitution lowered as far as a run at `time_step`
-// stays stable (contact/stability.hpp), but not below compaction_restitution: the most damped
-// contacts that can bring a specimen to rest at the test's own step. Only the static state is
-// kept, which does not depend on e (a re-equilibration before the loading).
+// stays stable (contact/stability.hpp), but not below compaction_restitution (or
+// most_damped_compaction_restitution when it is unset): the most damped contacts that can bring a
+// specimen to rest at the test's own step. Only the static state is kept, which does not depend
+// on e (a re-equilibration before the loading).
 PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
                            double min_radius);
 
@@ -89,6 +104,8 @@ struct Specimen {
   bool equilibrium_reached = false;
   bool target_reached = true;   // false: the target solid fraction was out of reach
   double simulated_time = 0.0;  // s
+  double time_step = 0.0;       // s, the preparation's step (0: read from a file)
+  long steps = 0;               // the preparation's steps
   Vec3 inserted_box;            // m, the box the beads were placed in
   double inserted_solid_fraction = 0.0;
 };
