@@ -23,7 +23,7 @@ for ((seed = 1; seed <= seeds; ++seed)); do
     name="e${e}_seed$seed"
     names+=("$name")
     [ -f "$name/summary.json" ] && continue
-    sed -e 's/^max_axial_strain = .*/max_axial_strain = 0.08/' \
+    sed -e 's/^max_axial_strain = .*/max_axial_strain = 0.08/' -e '/^compaction_restitution = /d' \
         -e "/^\[test\]/a seed = $seed\ncompaction_restitution = $e" \
         "$src/examples/triaxial/reference.toml" > "$name.toml"
     grep -q '^max_axial_strain = 0.08' "$name.toml"

@@ -105,10 +105,9 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
     t.fail("compaction",
            "expected \"walls\" (the walls' servos compact the specimen) or \"affine\" (the whole "
            "box is strained homogeneously, then held by the walls)");
-  // unset: the most damped restitution stable at the test's step (lab/specimen.hpp)
-  p.compaction_restitution = t.optional_number("compaction_restitution", Quantity::dimensionless);
-  if (p.compaction_restitution &&
-      !(*p.compaction_restitution > 0 && *p.compaction_restitution <= 1))
+  p.compaction_restitution =
+      t.number_or("compaction_restitution", Quantity::dimensionless, p.compaction_restitution);
+  if (!(p.compaction_restitution > 0 && p.compaction_restitution <= 1))
     t.fail("compaction_restitution", "expected a restitution coefficient in (0, 1]");
   p.seed = static_cast<uint64_t>(t.integer_or("seed", 1));
   if (t.has("specimen")) s.specimen_file = t.string("specimen");

@@ -156,41 +156,16 @@ void save_preparation(const PreparationCheckpoints& cp, const PrepState& st,
 
 }  // namespace
 
-namespace {
-
-// The most damped bead restitution from `floor` up, in steps of 0.05, whose contacts (with beads
-// and walls) a run at `time_step` keeps stable; the measured one when no lower value is.
-double stable_restitution(const SpecimenSettings& s, const PairTable& measured, double time_step,
-                          double min_radius, double floor) {
+PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
+                           double min_radius) {
   const double e_measured = measured(s.bead_material, s.bead_material).restitution;
-  for (int k = 0;; ++k) {
-    const double e = floor + 0.05 * k;  // (not a running sum: 0.3 + 0.05 + 0.05 is not 0.4)
-    if (!(e < e_measured)) break;
+  for (double e = s.compaction_restitution; e < e_measured; e += 0.05) {
     PairTable damped = measured;
     set_compaction_contacts(damped, measured, s, -1.0, -1.0, e);
     if (stable_time_step(time_step, damped, s.bead_material, min_radius).time_step >= time_step)
-      return e;
+      return damped;
   }
-  return e_measured;
-}
-
-}  // namespace
-
-double compaction_restitution(const SpecimenSettings& s, const PairTable& measured,
-                              double time_step, double min_radius) {
-  if (s.compaction_restitution) return *s.compaction_restitution;
-  return stable_restitution(s, measured, time_step, min_radius, most_damped_compaction_restitution);
-}
-
-PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
-                           double min_radius) {
-  const double e =
-      stable_restitution(s, measured, time_step, min_radius,
-                         s.compaction_restitution.value_or(most_damped_compaction_restitution));
-  PairTable damped = measured;
-  if (e < measured(s.bead_material, s.bead_material).restitution)
-    set_compaction_contacts(damped, measured, s, -1.0, -1.0, e);
-  return damped;
+  return measured;
 }
 
 namespace {
@@ -263,20 +238,18 @@ Specimen prepare_cuboid_specimen(const SpecimenSettings& s, PairTable table, Pro
       s.compaction_friction ? *s.compaction_friction : (s.target_solid_fraction ? 0.0 : -1.0);
   const double hold_wall_friction = s.wall_friction_while_preparing ? -1.0 : 0.0;
   out.compaction_friction = bead_friction < 0 ? glass.friction : bead_friction;
-  // The step must be stable for the compaction contacts (more damped) and the measured ones
-  // (restored at the end), by the one rule of contact/stability.hpp. Unless the config sets it,
-  // the compaction restitution is the most damped one stable at the test's own step, so that
-  // the preparation runs at that step (0.4 and 0.1 t_c for the reference beads, where 0.3 needed
-  // 0.075 t_c: a quarter fewer steps).
-  const MaterialTimeStep step = specimen_time_step(s, original, r_min);
-  const double restitution = compaction_restitution(s, original, step.time_step, r_min);
-  out.compaction_restitution = std::min(restitution, glass.restitution);
+  out.compaction_restitution = std::min(s.compaction_restitution, glass.restitution);
   out.wall_friction_while_preparing = s.wall_friction_while_preparing;
   set_compaction_contacts(table, original, s, bead_friction,
-                          s.target_solid_fraction ? 0.0 : hold_wall_friction, restitution);
+                          s.target_solid_fraction ? 0.0 : hold_wall_friction,
+                          s.compaction_restitution);
+  // The step must be stable for the compaction contacts (more damped) and the measured ones
+  // (restored at the end), by the one rule of contact/stability.hpp.
   SimulationSettings settings;
+  const MaterialTimeStep step = specimen_time_step(s, original, r_min);
   PairTable measured_friction = table;
-  set_compaction_contacts(measured_friction, original, s, -1.0, hold_wall_friction, restitution);
+  set_compaction_contacts(measured_friction, original, s, -1.0, hold_wall_friction,
+                          s.compaction_restitution);
   settings.time_step = std::min(
       {step.time_step, stable_time_step(step.time_step, table, s.bead_material, r_min).time_step,
        stable_time_step(step.time_step, measured_friction, s.bead_material, r_min).time_step});

@@ -50,11 +50,9 @@ struct SpecimenSettings {
   double dt_fraction = 0.1;
   double max_strain_rate = 10.0;  // 1/s, wall speed cap during compaction
   Compaction compaction = Compaction::walls;
-  // e of every bead contact while compacting (faster rest). Unset: the most damped value from
-  // most_damped_compaction_restitution up, in steps of 0.05, that is stable at the test's own
-  // step, so that the preparation runs at that step; set: that value, the step lowered as far
-  // as its contacts need (contact/stability.hpp).
-  std::optional<double> compaction_restitution;
+  // e of every bead contact while compacting (faster rest); the preparation's step is lowered as
+  // far as these contacts need (0.3: 0.075 t_c for the reference beads, 0.4 keeps 0.1 t_c)
+  double compaction_restitution = 0.3;
   double stress_tolerance = 0.005;     // equilibrium: wall stresses within 0.5 % of the target
   double unbalanced_tolerance = 1e-4;  // and mean unbalanced / mean contact force below this
   double max_time = 0.5;               // s simulated at most
@@ -68,21 +66,10 @@ struct SpecimenSettings {
 MaterialTimeStep specimen_time_step(const SpecimenSettings& s, const PairTable& table,
                                     double min_radius);
 
-// The most damped restitution the preparation's contacts may have (a default, not a limit: a
-// config may set any compaction_restitution in (0, 1]).
-inline constexpr double most_damped_compaction_restitution = 0.3;
-
-// The bead restitution while compacting: compaction_restitution when set, else the most damped
-// value from most_damped_compaction_restitution up, in steps of 0.05, whose contacts a run at
-// `time_step` keeps stable (contact/stability.hpp); the measured one when no lower value is.
-double compaction_restitution(const SpecimenSettings& s, const PairTable& measured,
-                              double time_step, double min_radius);
-
 // The bead contacts of `measured` with their restitution lowered as far as a run at `time_step`
-// stays stable (contact/stability.hpp), but not below compaction_restitution (or
-// most_damped_compaction_restitution when it is unset): the most damped contacts that can bring a
-// specimen to rest at the test's own step. Only the static state is kept, which does not depend
-// on e (a re-equilibration before the loading).
+// stays stable (contact/stability.hpp), but not below compaction_restitution: the most damped
+// contacts that can bring a specimen to rest at the test's own step. Only the static state is
+// kept, which does not depend on e (a re-equilibration before the loading).
 PairTable resting_contacts(const SpecimenSettings& s, const PairTable& measured, double time_step,
                            double min_radius);
 
