@@ -7,15 +7,14 @@
 #include <chrono>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <thread>
 #include <vector>
 
 #include "command.hpp"
 #include "grainlab/version.hpp"
+#include "io/output_files.hpp"
 #include "io/wait_policy.hpp"
 
 namespace {
@@ -33,12 +32,9 @@ namespace {
 // in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
 constexpr const char* barrier_spin_rounds = "1000";
 
+// (an unreadable /proc/stat reads as "", which parse_cpu_times refuses)
 std::optional<grainlab::CpuTimes> read_cpu_times(const std::vector<int>& cpus) {
-  std::ifstream in("/proc/stat");
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return grainlab::parse_cpu_times(text.str(), cpus);
+  return grainlab::parse_cpu_times(grainlab::read_file("/proc/stat"), cpus);
 }
 
 // The CPUs this process may run on (its affinity mask; in a container or under taskset not all
