@@ -1,12 +1,19 @@
 // Work sharing for the stages of a step that run inside one parallel region
 // (Simulation::compute_forces). [0, n) is cut into the team's blocks (the partition
 // schedule(static) makes, core/thread_block.hpp) and each block into chunks. Every thread first
-// takes the chunks of its own block, in order, so that in a balanced step it works on the same
-// particles, and the same cache lines, as in the stage before and the step before; then it
-// takes what is left of the other threads' blocks. A thread on a slower core (another process
-// on it, a lower clock with many cores busy) thus hands its last chunks to the others instead of
-// making them wait at the next barrier: on a 16-core server the threads had waited 14 % of the
-// step at the barriers with fixed blocks (docs/performance.md sec. 16).
+// takes the chunks of its own block from its front, in order, so that in a balanced step it works
+// on the same particles, and the same cache lines, as in the stage before and the step before.
+// Then it takes chunks of the other threads' blocks from their backs, as long as the owner has
+// at least two chunks left: a thread on a slower core (another process on it, a lower clock with
+// many cores busy) thus hands its last chunks to the others instead of making them wait at the
+// next barrier (on a 16-core server the threads had waited 14 % of the step at the barriers with
+// fixed blocks, docs/performance.md sec. 16), but a chunk changes hands only where the owner is
+// really behind. A taken-over chunk is dear: its particles' data lies in the owner's caches
+// (written by its drift, read again by its gather), and on the 2-core development VM such a
+// chunk took about 1.5 times as long. Taking the next chunks from the owner's front, as this
+// queue first did, took them whenever the owner was a fraction of a chunk behind; the back of a
+// block is also the part next to the following thread's block, whose particles its rows reach
+// (docs/performance.md sec. 20).
 //
 // Which thread computes a chunk never changes the arithmetic of a particle or a contact (each
 // is computed whole, by one thread, from data no other thread writes in that stage), so the
@@ -17,6 +24,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <memory>
 
 #include "core/thread_block.hpp"
@@ -39,10 +47,18 @@ class ChunkQueue {
       capacity_ = team;
     }
     n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
+    // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 1 chunks
+    // is taken in larger chunks)
+    constexpr long max_chunks = 0xffffffffL;
     for (int t = 0; t < team; ++t) {
       const IndexBlock b = block_of(n, team, t);
-      cursors_[t].next.store(b.first, std::memory_order_relaxed);
-      cursors_[t].end = b.end;
+      chunk_ = std::max(chunk_, (b.end - b.first + max_chunks - 1) / max_chunks);
+    }
+    for (int t = 0; t < team; ++t) {
+      const IndexBlock b = block_of(n, team, t);
+      Cursor& c = cursors_[t];
+      c.first = b.first, c.end = b.end;
+      c.untaken.store(pack(0, (b.end - b.first + chunk_ - 1) / chunk_), std::memory_order_relaxed);
     }
   }
 
@@ -57,21 +73,47 @@ class ChunkQueue {
       if (b.first < b.end) chunk(b.first, b.end);
       return;
     }
-    for (int k = 0; k < team; ++k) {  // own block first, then the next threads' blocks
-      Cursor& c = cursors_[(me + k) % team];
-      for (;;) {
-        const long first = c.next.fetch_add(chunk_, std::memory_order_relaxed);
-        if (first >= c.end) break;
-        chunk(first, std::min(first + chunk_, c.end));
-      }
+    Cursor& own = cursors_[me];
+    for (long k = 0; take(own, 0, k, true);) run(own, k, chunk);  // own block, from the front
+    for (int t = 1; t < team; ++t) {  // the others', from the back, while their owners lag
+      Cursor& other = cursors_[(me + t) % team];
+      for (long k = 0; take(other, chunks_left_to_owner, k, false);) run(other, k, chunk);
     }
   }
 
  private:
+  // Chunks of a block go to other threads only while more than this many are untaken: the
+  // owner's last chunk stays its own (measured: docs/performance.md sec. 20).
+  static constexpr long chunks_left_to_owner = 1;
+
+  // The chunks of block [first, end) not yet taken are numbers [front, back), both halves of one
+  // atomic word, so that the owner (front) and the others (back) never take the same chunk.
   struct alignas(64) Cursor {  // one cache line each: threads take chunks without false sharing
-    std::atomic<long> next{0};
-    long end = 0;
+    std::atomic<uint64_t> untaken{0};
+    long first = 0, end = 0;
   };
+  static uint64_t pack(long front, long back) {
+    return static_cast<uint64_t>(front) << 32 | static_cast<uint64_t>(back);
+  }
+  // Takes chunk number k of c: its front one (from_front) or its back one, if more than `leave`
+  // chunks are untaken. False when there is none to take.
+  static bool take(Cursor& c, long leave, long& k, bool from_front) {
+    uint64_t u = c.untaken.load(std::memory_order_relaxed);
+    for (;;) {
+      const long front = static_cast<long>(u >> 32), back = static_cast<long>(u & 0xffffffffu);
+      if (back - front <= leave) return false;
+      const uint64_t taken = from_front ? pack(front + 1, back) : pack(front, back - 1);
+      if (c.untaken.compare_exchange_weak(u, taken, std::memory_order_relaxed)) {
+        k = from_front ? front : back - 1;
+        return true;
+      }
+    }
+  }
+  template <class F>
+  void run(const Cursor& c, long k, F& chunk) const {
+    const long first = c.first + k * chunk_;
+    chunk(first, std::min(first + chunk_, c.end));
+  }
   std::unique_ptr<Cursor[]> cursors_;
   int capacity_ = 0, team_ = 0;
   long n_ = 0, chunk_ = 1;

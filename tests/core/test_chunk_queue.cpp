@@ -1,6 +1,7 @@
 // The work sharing of the step's stages (core/chunk_queue.hpp): every index of [0, n) is handed
 // out exactly once, in chunks that never cross a thread's block; a thread that is late finds its
-// block done by the others; a team other than the planned one still covers [0, n) once.
+// block done by the others, from its back, all but the one chunk left to it; a team other than
+// the planned one still covers [0, n) once.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -70,14 +71,27 @@ TEST(ChunkQueue, EveryIndexIsTakenExactlyOnce) {
       }
 }
 
-TEST(ChunkQueue, ALateThreadFindsItsBlockTakenByTheOthers) {
-  // Thread 1 starts 200 ms late; thread 0 has taken all of both blocks long before.
-  const long n = 4000;
-  const Coverage c = drain(n, 2, 2, 64, 1, std::chrono::milliseconds(200));
+TEST(ChunkQueue, ALateThreadFindsItsBlockTakenByTheOthersFromTheBack) {
+  // Thread 1 starts 200 ms late; thread 0 has long since done its own block and taken thread 1's
+  // chunks from the back, all but the last one left: the front chunk, which thread 1 takes.
+  const long n = 4000, chunk = 64;
+  const Coverage c = drain(n, 2, 2, chunk, 1, std::chrono::milliseconds(200));
   for (long i = 0; i < n; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
-  long by_first = 0;
-  for (long i = n / 2; i < n; ++i) by_first += c.taken_by[i] == 0;
-  EXPECT_GT(by_first, n / 4) << "thread 0 should have taken most of thread 1's block";
+  for (long i = 0; i < n / 2; ++i) ASSERT_EQ(c.taken_by[i], 0) << "index " << i;
+  for (long i = n / 2; i < n / 2 + chunk; ++i) ASSERT_EQ(c.taken_by[i], 1) << "index " << i;
+  for (long i = n / 2 + chunk; i < n; ++i) ASSERT_EQ(c.taken_by[i], 0) << "index " << i;
+  EXPECT_EQ(c.chunks_of_thread[1], 1);
+}
+
+TEST(ChunkQueue, AThreadTakesAnotherBlockOnlyWhileItsOwnerHasTwoChunksLeft) {
+  // One chunk per block: a thread that is late still finds its only chunk, however late.
+  const Coverage one = drain(128, 2, 2, 64, 1, std::chrono::milliseconds(100));
+  for (long i = 0; i < 128; ++i) ASSERT_EQ(one.times_taken[i], 1) << "index " << i;
+  for (long i = 64; i < 128; ++i) ASSERT_EQ(one.taken_by[i], 1) << "index " << i;
+  // Two chunks: the other thread takes the back one.
+  const Coverage two = drain(256, 2, 2, 64, 1, std::chrono::milliseconds(100));
+  for (long i = 128; i < 192; ++i) ASSERT_EQ(two.taken_by[i], 1) << "index " << i;
+  for (long i = 192; i < 256; ++i) ASSERT_EQ(two.taken_by[i], 0) << "index " << i;
 }
 
 TEST(ChunkQueue, ATeamOtherThanPlannedStillCoversEveryIndexOnce) {
