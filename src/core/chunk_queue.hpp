@@ -62,9 +62,10 @@ class ChunkQueue {
     }
   }
 
-  // Inside the region, by every thread of the team: calls chunk(first, end) until no index of
-  // [0, n) is left. What the chunks write is visible to the other threads after the next
-  // barrier.
+  // Inside the region, by every thread of the team: calls chunk(first, end) for every chunk of
+  // its own block not taken by others, then for others' chunks while their owners lag; the team
+  // together takes every index of [0, n) exactly once. What the chunks write is visible to the
+  // other threads after the next barrier.
   template <class F>
   void drain(F&& chunk) {
     const int team = omp_get_num_threads(), me = omp_get_thread_num();
