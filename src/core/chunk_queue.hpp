@@ -11,9 +11,9 @@
 // really behind. A taken-over chunk is dear: its particles' data lies in the owner's caches
 // (written by its drift, read again by its gather), and on the 2-core development VM such a
 // chunk took about 1.5 times as long. Taking the next chunks from the owner's front, as this
-// queue first did, took them whenever the owner was a fraction of a chunk behind; the back of a
-// block is also the part next to the following thread's block, whose particles its rows reach
-// (docs/performance.md sec. 20).
+// queue first did, took them whenever the owner was a fraction of a chunk behind; and for the
+// thread whose block follows, the back of a block is the part whose rows reach into its own
+// particles (docs/performance.md sec. 20).
 //
 // Which thread computes a chunk never changes the arithmetic of a particle or a contact (each
 // is computed whole, by one thread, from data no other thread writes in that stage), so the
