@@ -48,12 +48,10 @@ class ChunkQueue {
     }
     n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
     // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 1 chunks
-    // is taken in larger chunks)
+    // is taken in larger chunks; the first block is the largest)
     constexpr long max_chunks = 0xffffffffL;
-    for (int t = 0; t < team; ++t) {
-      const IndexBlock b = block_of(n, team, t);
-      chunk_ = std::max(chunk_, (b.end - b.first + max_chunks - 1) / max_chunks);
-    }
+    const IndexBlock largest = block_of(n, team, 0);
+    chunk_ = std::max(chunk_, (largest.end - largest.first + max_chunks - 1) / max_chunks);
     for (int t = 0; t < team; ++t) {
       const IndexBlock b = block_of(n, team, t);
       Cursor& c = cursors_[t];
