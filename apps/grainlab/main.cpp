@@ -29,7 +29,9 @@ namespace {
 // measure first, for 0.1 s, how many CPUs other processes keep busy, and let the threads sleep
 // at once when they would not each find a free one (io/wait_policy.hpp). libgomp reads its
 // settings when it is loaded, before main, so the setting takes a restart of the program with it
-// in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
+// in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept, and threads bound
+// by OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY get no restart (it would inherit the first
+// thread's single CPU).
 constexpr const char* barrier_spin_rounds = "1000";
 
 // (an unreadable /proc/stat reads as "", which parse_cpu_times refuses)
@@ -62,9 +64,20 @@ int requested_threads(int argc, char** argv, int cpus) {
 void choose_barrier_waiting(int argc, char** argv) {
   using namespace grainlab;
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  WaitPolicy policy = WaitPolicy::bounded_spin;
   const std::string_view command = argc > 1 ? argv[1] : "";
-  if (command == "run" || command == "prepare") {  // the long runs
+  const bool long_run = command == "run" || command == "prepare";
+  const bool quiet = std::find_if(argv, argv + argc, [](const char* a) {
+                       return std::string_view(a) == "--quiet";
+                     }) != argv + argc;
+  // Bound threads: the runtime has already bound this first thread, and a restart would keep
+  // only its CPU (io/wait_policy.hpp), so no restart and the runtime's own policy.
+  if (openmp_binds_threads(std::getenv("OMP_PROC_BIND"), std::getenv("OMP_PLACES"),
+                           std::getenv("GOMP_CPU_AFFINITY"))) {
+    if (long_run && !quiet) fmt::print(stderr, "grainlab: {}\n", describe_bound_threads());
+    return;
+  }
+  WaitPolicy policy = WaitPolicy::bounded_spin;
+  if (long_run) {
     const std::vector<int> usable = usable_cpus();
     const int cpus = usable.empty() ? static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)))
                                     : static_cast<int>(usable.size());
@@ -75,9 +88,6 @@ void choose_barrier_waiting(int argc, char** argv) {
     if (before && after) {
       const double busy = busy_cpus_between(*before, *after, cpus);
       policy = choose_wait_policy(threads, cpus, busy);
-      const bool quiet = std::find_if(argv, argv + argc, [](const char* a) {
-                           return std::string_view(a) == "--quiet";
-                         }) != argv + argc;
       if (policy == WaitPolicy::passive && !quiet)
         fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
     }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <sstream>
 #include <string_view>
@@ -71,6 +72,30 @@ double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
   const double free_cpus = cpus - busy_cpus;
   return threads > 1 && free_cpus < threads - 0.5 ? WaitPolicy::passive : WaitPolicy::bounded_spin;
+}
+
+bool openmp_binds_threads(const char* proc_bind, const char* places,
+                          const char* gomp_cpu_affinity) {
+  const auto given = [](const char* v) {
+    if (!v) return false;
+    for (; *v; ++v)
+      if (!std::isspace(static_cast<unsigned char>(*v))) return true;
+    return false;
+  };
+  if (given(proc_bind)) {
+    std::string value;
+    for (const char* c = proc_bind; *c; ++c)
+      if (!std::isspace(static_cast<unsigned char>(*c)))
+        value += static_cast<char>(std::tolower(static_cast<unsigned char>(*c)));
+    return value != "false";
+  }
+  return given(places) || given(gomp_cpu_affinity);
+}
+
+std::string describe_bound_threads() {
+  return "OpenMP threads are bound (OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY): grainlab "
+         "keeps the runtime's own wait policy, which spins long at every barrier; with another "
+         "process busy on these CPUs set OMP_WAIT_POLICY=passive (docs/performance.md sec. 21)";
 }
 
 std::string describe_passive_choice(int threads, int cpus, double busy_cpus) {

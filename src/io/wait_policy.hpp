@@ -38,6 +38,18 @@ double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus
 enum class WaitPolicy { bounded_spin, passive };
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
 
+// Whether the OpenMP environment binds threads to CPUs, from the values of OMP_PROC_BIND,
+// OMP_PLACES and GOMP_CPU_AFFINITY (null: unset). libgomp then binds the program's first thread
+// as it loads, before main: a restart would inherit that one thread's CPU as the whole
+// process's affinity and run every thread there (measured: OMP_PROC_BIND=spread gave a 2-thread
+// run the places {0}). So grainlab does not restart itself when this holds. OMP_PROC_BIND=false
+// binds nothing, whatever the other two say; OMP_PLACES alone binds (libgomp's reading).
+bool openmp_binds_threads(const char* proc_bind, const char* places, const char* gomp_cpu_affinity);
+
+// One line for the user when a run keeps the runtime's own wait policy because the threads are
+// bound (openmp_binds_threads).
+std::string describe_bound_threads();
+
 // One line for the user when the threads will sleep at once: what was measured, what was chosen
 // and how to choose otherwise.
 std::string describe_passive_choice(int threads, int cpus, double busy_cpus);

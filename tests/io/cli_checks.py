@@ -745,6 +745,31 @@ def barrier_spin_is_bounded():
     print("barrier spin:", spin_counts())
 
 
+@check
+def bound_threads_keep_every_cpu():
+    """With OMP_PROC_BIND (or OMP_PLACES) set, libgomp binds grainlab's first thread before main;
+    a restart to set the wait policy would inherit that one CPU and run all threads on it. So a
+    bound run starts its runtime once, its places list every usable CPU, and it says which wait
+    policy it keeps. Needs 2 usable CPUs for the places check (else only the single start)."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT", "GOMP_CPU_AFFINITY")}
+    env.update(OMP_PROC_BIND="spread", OMP_PLACES="threads", OMP_DISPLAY_ENV="true")
+    with tempfile.TemporaryDirectory() as d:
+        c = os.path.join(d, "scene.toml")
+        with open(c, "w") as f:
+            f.write(BASE)
+        r = subprocess.run([EXE, "run", c, "--out", os.path.join(d, "out"), "--threads", "2"],
+                           capture_output=True, text=True, env=env, timeout=300, cwd=d)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, (r.returncode, out[-2000:])
+    places = re.findall(r"OMP_PLACES = '([^']*)'", out)
+    assert len(places) == 1, ("the runtime started more than once", places)
+    usable = len(os.sched_getaffinity(0))
+    assert places[0].count("{") == usable, (places, usable)
+    assert "threads are bound" in r.stderr, r.stderr
+    print("bound run, places:", places[0])
+
+
 if __name__ == "__main__":
     CHECKS[sys.argv[2]]()
     print("ok:", sys.argv[2])

@@ -63,3 +63,21 @@ TEST(WaitPolicy, ThreadsSleepAtOnceOnlyWhenTheyWouldNotEachFindAFreeCpu) {
   EXPECT_NE(said.find("1.0 of 2 CPUs busy"), std::string::npos) << said;
   EXPECT_NE(said.find("OMP_WAIT_POLICY=passive"), std::string::npos) << said;
 }
+
+TEST(WaitPolicy, BindingIsReadAsLibgompReadsIt) {
+  // nothing set: no binding (grainlab may restart itself)
+  EXPECT_FALSE(openmp_binds_threads(nullptr, nullptr, nullptr));
+  // OMP_PROC_BIND: any policy binds, false does not, whatever the places say (case and blanks
+  // as the runtime accepts them)
+  EXPECT_TRUE(openmp_binds_threads("spread", nullptr, nullptr));
+  EXPECT_TRUE(openmp_binds_threads("TRUE", nullptr, nullptr));
+  EXPECT_TRUE(openmp_binds_threads("spread,close", nullptr, nullptr));
+  EXPECT_FALSE(openmp_binds_threads("false", "threads", nullptr));
+  EXPECT_FALSE(openmp_binds_threads(" FALSE ", nullptr, "0-1"));
+  // places or a GOMP CPU list alone bind
+  EXPECT_TRUE(openmp_binds_threads(nullptr, "threads", nullptr));
+  EXPECT_TRUE(openmp_binds_threads(nullptr, nullptr, "0-1"));
+  // set but empty: as unset
+  EXPECT_FALSE(openmp_binds_threads("", " ", ""));
+  EXPECT_NE(describe_bound_threads().find("OMP_WAIT_POLICY=passive"), std::string::npos);
+}
