@@ -750,7 +750,8 @@ def bound_threads_keep_every_cpu():
     """With OMP_PROC_BIND (or OMP_PLACES) set, libgomp binds grainlab's first thread before main;
     a restart to set the wait policy would inherit that one CPU and run all threads on it. So a
     bound run starts its runtime once, its places list every usable CPU, and it says which wait
-    policy it keeps. Needs 2 usable CPUs for the places check (else only the single start)."""
+    policy it keeps. (With one usable CPU the places check cannot tell; the single start still
+    can.)"""
     env = {k: v for k, v in os.environ.items()
            if k not in ("OMP_WAIT_POLICY", "GOMP_SPINCOUNT", "GOMP_CPU_AFFINITY")}
     env.update(OMP_PROC_BIND="spread", OMP_PLACES="threads", OMP_DISPLAY_ENV="true")
