@@ -76,20 +76,17 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,
                           const char* gomp_cpu_affinity) {
-  const auto given = [](const char* v) {
-    if (!v) return false;
-    for (; *v; ++v)
-      if (!std::isspace(static_cast<unsigned char>(*v))) return true;
-    return false;
+  // An environment value without its blanks, in lower case; "" when unset or blank.
+  const auto normalized = [](const char* v) {
+    std::string out;
+    for (; v && *v; ++v)
+      if (!std::isspace(static_cast<unsigned char>(*v)))
+        out += static_cast<char>(std::tolower(static_cast<unsigned char>(*v)));
+    return out;
   };
-  if (given(proc_bind)) {
-    std::string value;
-    for (const char* c = proc_bind; *c; ++c)
-      if (!std::isspace(static_cast<unsigned char>(*c)))
-        value += static_cast<char>(std::tolower(static_cast<unsigned char>(*c)));
-    return value != "false";
-  }
-  return given(places) || given(gomp_cpu_affinity);
+  const std::string bind = normalized(proc_bind);
+  if (!bind.empty()) return bind != "false";
+  return !normalized(places).empty() || !normalized(gomp_cpu_affinity).empty();
 }
 
 std::string describe_bound_threads() {
