@@ -1,6 +1,7 @@
 #!/bin/bash
-# Thread scaling of the step loop. grainlab_bench runs dense-11k and mirrored tiles of it
-# (2x2x3: 139,632 beads; 4x4x4: 744,704 beads) at 1, 2, 4, 8, 16 ... threads (powers of two up
+# Thread scaling of the step loop. grainlab_bench runs dense-11k, mirrored tiles of it
+# (2x2x3: 139,632 beads; 4x4x4: 744,704 beads) and, where it is cached, the lab's own 88,400-bead
+# plane strain specimen (dense-88k) at 1, 2, 4, 8, 16 ... threads (powers of two up
 # to the machine's processors, and the processor count itself), one thread per core
 # (OMP_PLACES=cores, OMP_PROC_BIND=close unless set). Rounds are interleaved: each round runs
 # every thread count once. Prints each run, then per workload and thread count the median
@@ -9,7 +10,9 @@
 # count). Rows go to OUT_DIR/<hostname>.csv as grainlab_bench writes them.
 #   bench/thread_scaling.sh BENCH [OUT_DIR]
 #   env: CACHE_DIR (packings, default build/bench-cache), ROUNDS (default 3), WORKLOADS (names
-#   from the table below, default all), MAX_THREADS (default: all processors)
+#   from the table below, default all), MAX_THREADS (default: all processors), SPECIMEN_88K (the
+#   specimen.csv of `grainlab prepare examples/plane_strain/reference.toml`; dense-88k runs when
+#   it is given or CACHE_DIR/dense-88k.csv exists, and is skipped with a note otherwise)
 #   e.g. bench/thread_scaling.sh build/release/bench/grainlab_bench build/scaling
 set -euo pipefail
 bench=$1 out=${2:-build/bench-results}
@@ -21,9 +24,15 @@ threads=() t=1
 while ((t <= procs)); do threads+=("$t"); t=$((t * 2)); done
 ((threads[-1] == procs)) || threads+=("$procs")
 
-# name | tile (empty: none) | timed steps | warm-up steps; the tiled packings' steps keep a
-# 1-thread run near 15 s on a 2024 server core
-table=("dense-11k||2000|100" "tile-2x2x3|2x2x3|400|50" "tile-4x4x4|4x4x4|60|10")
+# name | grainlab_bench workload | tile (empty: none) | timed steps | warm-up steps; the larger
+# packings' steps keep a 1-thread run near 15 s on a 2024 server core
+table=("dense-11k|dense-11k||2000|100" "dense-88k|dense-88k||600|50" "tile-2x2x3|dense-11k|2x2x3|400|50"
+  "tile-4x4x4|dense-11k|4x4x4|60|10")
+if [ -n "${SPECIMEN_88K:-}" ] && [ ! -f "$SPECIMEN_88K" ]; then
+  echo "SPECIMEN_88K=$SPECIMEN_88K: no such file (the specimen.csv of grainlab prepare" \
+    "examples/plane_strain/reference.toml)" >&2
+  exit 2
+fi
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) processors," \
   "$(lscpu 2>/dev/null | awk -F: '/^Thread\(s\) per core/{gsub(/ /,"",$2); print $2}') thread(s) per core," \
   "$(lscpu 2>/dev/null | awk -F: '/^NUMA node\(s\)/{gsub(/ /,"",$2); print $2}') NUMA node(s)"
@@ -31,13 +40,21 @@ echo "threads: ${threads[*]}  rounds: $rounds  OMP_PLACES=$OMP_PLACES OMP_PROC_B
 runs=$out/thread-scaling-runs.txt
 : >"$runs"
 for row in "${table[@]}"; do
-  IFS='|' read -r name tile steps warmup <<<"$row"
+  IFS='|' read -r name workload tile steps warmup <<<"$row"
   [ -z "${WORKLOADS:-}" ] || [[ " $WORKLOADS " == *" $name "* ]] || continue
   tile_args=()
   [ -z "$tile" ] || tile_args=(--tile "$tile")
+  if [ "$workload" = dense-88k ]; then
+    if [ -n "${SPECIMEN_88K:-}" ]; then
+      tile_args=(--specimen "$SPECIMEN_88K")
+    elif [ ! -f "$cache/dense-88k.csv" ]; then
+      echo "dense-88k skipped: not in $cache and no SPECIMEN_88K given"
+      continue
+    fi
+  fi
   for ((r = 1; r <= rounds; ++r)); do
     for t in "${threads[@]}"; do
-      line=$("$bench" dense-11k "${tile_args[@]}" --threads "$t" --reps 1 --steps "$steps" \
+      line=$("$bench" "$workload" "${tile_args[@]}" --threads "$t" --reps 1 --steps "$steps" \
         --warmup "$warmup" --cache-dir "$cache" --results-dir "$out" --label thread-scaling \
         2>/dev/null | awk '$1 ~ /^[0-9]+$/ && NF >= 9')
       # threads rep p-steps/s ns/p-step rebuilds Z RSS B/particle hash entries
