@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -67,6 +68,27 @@ struct PairContacts {
         io(twisting_angle), io(rolling_force_displacement), io(result), io(moment);
   }
 };
+
+// The history fields of `store`, moved out (the rest stays behind, to be freed with `store`).
+template <class Store>
+Store histories_of(Store&& store) {
+  Store h;
+  h.sliding_spring = std::move(store.sliding_spring);
+  h.rolling_angle = std::move(store.rolling_angle);
+  h.twisting_angle = std::move(store.twisting_angle);
+  h.rolling_force_displacement = std::move(store.rolling_force_displacement);
+  return h;
+}
+
+// Whether entry e of a pair or wall store holds a history (a spring or an angle not zero): one
+// that a rebuild must carry, and that the active pair list must keep.
+template <class Store>
+bool entry_has_history(const Store& s, size_t e) {
+  return norm2(s.sliding_spring[e]) != 0.0 ||
+         (!s.rolling_angle.empty() && norm2(s.rolling_angle[e]) != 0.0) ||
+         (!s.twisting_angle.empty() && s.twisting_angle[e] != 0.0) ||
+         (!s.rolling_force_displacement.empty() && norm2(s.rolling_force_displacement[e]) != 0.0);
+}
 
 // Particle-wall candidates, CSR by particle: walls wall[row_start[i] .. row_start[i+1]).
 struct WallContacts {

@@ -124,13 +124,6 @@ void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) co
     uint32_t k = pairs.row_start[i];
     for_each_partner(i, [&](uint32_t j) { pairs.partner[k++] = j; });
   }
-  // Transpose, in increasing entry order (fixed, thread-independent).
-  pairs.col_start.assign(static_cast<size_t>(n) + 1, 0);
-  for (uint32_t j : pairs.partner) ++pairs.col_start[j + 1];
-  std::partial_sum(pairs.col_start.begin(), pairs.col_start.end(), pairs.col_start.begin());
-  pairs.col_pair.resize(pairs.partner.size());
-  std::vector<uint32_t> fill(pairs.col_start.begin(), pairs.col_start.end() - 1);
-  for (uint32_t e = 0; e < pairs.partner.size(); ++e) pairs.col_pair[fill[pairs.partner[e]]++] = e;
 }
 
 void NeighborSearch::build_wall_candidates(const ParticleStore& p, const std::vector<Wall>& walls,
@@ -160,14 +153,6 @@ struct KeyedEntry {
   bool operator<(const KeyedEntry& o) const { return key < o.key; }
 };
 
-template <class Store>
-bool has_history(const Store& s, size_t e) {
-  return norm2(s.sliding_spring[e]) != 0.0 ||
-         (!s.rolling_angle.empty() && norm2(s.rolling_angle[e]) != 0.0) ||
-         (!s.twisting_angle.empty() && s.twisting_angle[e] != 0.0) ||
-         (!s.rolling_force_displacement.empty() && norm2(s.rolling_force_displacement[e]) != 0.0);
-}
-
 // Sizes the history arrays of `fresh` and copies each entry's history from `old` where the key
 // of the entry was present before.
 template <class Store, class KeyOfNew>
@@ -193,16 +178,6 @@ void carry_history(const Store& old, const std::vector<KeyedEntry>& old_keys, St
   }
 }
 
-// The history fields of `store`, moved out (the rest stays behind, to be freed with `store`).
-template <class Store>
-Store histories_of(Store&& store) {
-  Store h;
-  h.sliding_spring = std::move(store.sliding_spring);
-  h.rolling_angle = std::move(store.rolling_angle);
-  h.twisting_angle = std::move(store.twisting_angle);
-  h.rolling_force_displacement = std::move(store.rolling_force_displacement);
-  return h;
-}
 
 // The keys of the entries of `s` (CSR rows per particle) that carry history, sorted; counted
 // first so that the vector is allocated once, at its size.
@@ -211,11 +186,11 @@ std::vector<KeyedEntry> history_keys(const Store& s, size_t particles, KeyOf key
   std::vector<KeyedEntry> keys;
   if (s.row_start.size() != particles + 1) return keys;
   size_t count = 0;
-  for (size_t e = 0; e < s.size(); ++e) count += has_history(s, e);
+  for (size_t e = 0; e < s.size(); ++e) count += entry_has_history(s, e);
   keys.reserve(count);
   for (size_t i = 0; i < particles; ++i)
     for (uint32_t e = s.row_start[i]; e < s.row_start[i + 1]; ++e)
-      if (has_history(s, e)) keys.push_back({key_of(i, e), e});
+      if (entry_has_history(s, e)) keys.push_back({key_of(i, e), e});
   std::sort(keys.begin(), keys.end());
   return keys;
 }
@@ -249,11 +224,24 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   build_pairs(p, pairs);
   build_wall_candidates(p, walls, wall_contacts);
 
-  {  // entry -> first particle, for the key of each new pair entry
-    const std::vector<uint32_t> first = row_of_each_entry(pairs.row_start);
-    carry_history(old_pairs, old_pair_keys, pairs, pieces,
-                  [&](long e) { return pair_key(p.id[first[e]], p.id[pairs.partner[e]]); });
+  // The candidates keep only their rows and partners. Each finds its old entry, if it had a
+  // history, by its pair of ids; the active entries selected from them take those histories.
+  candidate_row_start_ = std::move(pairs.row_start);
+  candidate_partner_ = std::move(pairs.partner);
+  pairs = PairContacts{};
+  std::vector<uint32_t> old_entry(candidate_partner_.size(), no_old_entry);
+  if (!old_pair_keys.empty()) {
+    const std::vector<uint32_t> first = row_of_each_entry(candidate_row_start_);
+    const long count = static_cast<long>(old_entry.size());
+#pragma omp parallel for schedule(static)
+    for (long c = 0; c < count; ++c) {
+      const KeyedEntry probe{pair_key(p.id[first[c]], p.id[candidate_partner_[c]]), 0};
+      auto it = std::lower_bound(old_pair_keys.begin(), old_pair_keys.end(), probe);
+      if (it != old_pair_keys.end() && it->key == probe.key) old_entry[c] = it->entry;
+    }
   }
+  select_active(p, old_pairs, old_entry, pairs, pieces);
+  old_entry = {};
   {
     const std::vector<uint32_t> owner = row_of_each_entry(wall_contacts.row_start);
     carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
@@ -264,9 +252,7 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   old_pairs = PairContacts{}, old_walls = WallContacts{};
   old_pair_keys = {}, old_wall_keys = {};
 
-  const size_t m = pairs.size();
-  pairs.result.assign(m, PairResult{});
-  pairs.moment.assign(pieces.rolling || pieces.twisting ? m : 0, Vec3{});
+  allocate_results(pairs, pieces);
   const size_t mw = wall_contacts.size();
   wall_contacts.force_on_particle.assign(mw, Vec3{});
   wall_contacts.torque_on_particle.assign(mw, Vec3{});
@@ -276,6 +262,7 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   position_at_build_ = p.position;
   wall_pose_at_build_.resize(walls.size());
   for (size_t w = 0; w < walls.size(); ++w) wall_pose_at_build_[w] = pose_of(walls[w]);
+  watch_for_rebuild();
   ++rebuild_count_;
 }
 

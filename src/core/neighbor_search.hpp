@@ -1,16 +1,28 @@
-// Neighbour search: linked cells feeding a half Verlet list with a skin.
+// Neighbour search: linked cells feeding a half Verlet list with a skin, and the active list the
+// force loop runs over, a subset of it with a thinner skin.
 //
 // At each rebuild the particles are binned into cells at least (2 r_max + skin) wide and
 // re-sorted in cell order (counting sort), so neighbours in space are neighbours in memory and
 // every cell's particles are contiguous. Because of that order, "partner index > i" needs only
-// the particle's own cell and the cells after it; a pair enters the list when the gap between
+// the particle's own cell and the cells after it; a pair becomes a candidate when the gap between
 // the spheres is below the skin. Walls get a candidate list the same way. Contact histories are
 // carried across a rebuild by a sort-merge on the permanent particle ids.
-// The list stays valid while no particle and no point of a wall's surface has moved more than
-// skin/2 (a wall that grows or turns counts by its farthest point: geometry/wall.hpp).
+// The candidates stay valid while no particle and no point of a wall's surface has moved more
+// than skin/2 (a wall that grows or turns counts by its farthest point: geometry/wall.hpp).
+//
+// The active list (the PairContacts the force loop, the gather and the measurements read) holds
+// the candidates whose gap is below the thinner list skin, in the candidates' order, and is
+// selected again ("refreshed") whenever a particle has moved more than list_skin/2 since the
+// last selection: until then no other candidate can touch. A refresh moves no particle and keeps
+// the order of the entries, so the forces are summed in the same order as over all candidates:
+// the entries left out are apart, and their zero forces change no sum. Results are therefore bit
+// for bit those of the full list, with about a third fewer entries to test and sum in a dense
+// packing (docs/performance.md sec. 23). Rebuilds come when they did (the skin decides them).
+// The selection lives in core/active_pair_list.cpp.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "contact/pair_table.hpp"
@@ -27,9 +39,17 @@ inline double verlet_skin(double diameter) {
   return 0.1 * diameter;
 }
 
+// The active list's skin as a fraction of the Verlet skin (docs/performance.md sec. 23): thin
+// enough that the list holds little more than the touching pairs, thick enough that refreshes
+// stay rare next to the steps.
+constexpr double default_list_skin_fraction = 0.1;
+
 class NeighborSearch {
  public:
-  explicit NeighborSearch(double skin) : skin_(skin) {}
+  // list_skin: the active list's skin (<= skin); equal to skin, the active list is every
+  // candidate.
+  explicit NeighborSearch(double skin) : NeighborSearch(skin, skin) {}
+  NeighborSearch(double skin, double list_skin) : skin_(skin), list_skin_(list_skin) {}
 
   bool needs_rebuild(const ParticleStore& particles, const std::vector<Wall>& walls) const;
   // The parts of needs_rebuild, for a caller that checks the particles inside its own loop
@@ -43,26 +63,66 @@ class NeighborSearch {
   bool moved_beyond_half_skin(size_t i, const Vec3& x) const {
     return norm2(x - position_at_build_[i]) > 0.25 * skin_ * skin_;
   }
+  // Whether particle i at x has moved more than half the list skin since the active list was
+  // selected (then refresh it).
+  bool moved_beyond_half_list_skin(size_t i, const Vec3& x) const {
+    return norm2(x - position_at_refresh_[i]) > 0.25 * list_skin_ * list_skin_;
+  }
+  // Whether a step must test moved_beyond_half_skin at all: false while every particle, at the
+  // last selection, was so close to where the list was built that moving another half list skin
+  // cannot take it beyond half the skin. Then only a step that refreshes needs the test
+  // (needs_rebuild), and the drift reads one array of positions, not two.
+  bool rebuild_possible_before_refresh() const { return rebuild_possible_before_refresh_; }
 
+  // Bins, sorts and finds the candidates, then selects the active list (`pairs`) from them.
   void rebuild(ParticleStore& particles, const std::vector<Wall>& walls, PairContacts& pairs,
                WallContacts& wall_contacts, ContactPieces pieces);
+  // Selects the active list again from the same candidates; the histories of the entries kept
+  // are kept. The particles' order does not change.
+  void refresh(const ParticleStore& particles, PairContacts& pairs, ContactPieces pieces);
 
   double skin() const { return skin_; }
-  // What decides the next rebuild (the cell grid is made anew at every rebuild).
+  double list_skin() const { return list_skin_; }
+  // The candidates, CSR rows per particle, partner index above the particle's (tests).
+  const std::vector<uint32_t>& candidate_row_start() const { return candidate_row_start_; }
+  const std::vector<uint32_t>& candidate_partner() const { return candidate_partner_; }
+  // What decides the next rebuild and refresh (the cell grid is made anew at every rebuild),
+  // and the candidates with the active entries' place among them.
   template <class Io>
   void for_each_field(Io&& io) {
-    io(position_at_build_), io(wall_pose_at_build_);
+    io(position_at_build_), io(wall_pose_at_build_), io(candidate_row_start_),
+        io(candidate_partner_), io(active_candidate_), io(position_at_refresh_);
+    watch_for_rebuild();  // derived from the two sets of positions (after a restore too)
   }
+  // "" when the saved fields fit particles and an active list of active_entries entries, else
+  // what does not (a damaged or foreign checkpoint).
+  std::string inconsistency(size_t particles, size_t active_entries) const;
   long& rebuild_count_ref() { return rebuild_count_; }
   long rebuild_count() const { return rebuild_count_; }
+  long& refresh_count_ref() { return refresh_count_; }
+  long refresh_count() const { return refresh_count_; }
 
  private:
   void bin_and_sort(ParticleStore& particles);
   void build_pairs(const ParticleStore& particles, PairContacts& pairs) const;
   void build_wall_candidates(const ParticleStore& particles, const std::vector<Wall>& walls,
                              WallContacts& contacts) const;
+  // The active list from the candidates now (rows, partners, transpose, histories; the results
+  // are allocate_results'): those within the list skin, and any that holds a history.
+  // old_entry[c]: candidate c's entry in `old`, which holds histories, or no_old_entry.
+  static constexpr uint32_t no_old_entry = UINT32_MAX;
+  void select_active(const ParticleStore& particles, const PairContacts& old,
+                     const std::vector<uint32_t>& old_entry, PairContacts& active,
+                     ContactPieces pieces);
+  static void allocate_results(PairContacts& pairs, ContactPieces pieces);
+
+  // rebuild_possible_before_refresh_ from the positions of the last build and selection
+  void watch_for_rebuild();
 
   double skin_;
+  double list_skin_;
+  bool rebuild_possible_before_refresh_ = true;
+  long refresh_count_ = 0;  // selections of the active list (one per rebuild, and the refreshes)
   long rebuild_count_ = 0;
   // cell grid of the last rebuild
   Vec3 grid_origin_;
@@ -72,6 +132,9 @@ class NeighborSearch {
   std::vector<uint32_t> cell_of_;     // per particle (sorted order)
   std::vector<Vec3> position_at_build_;
   std::vector<WallPose> wall_pose_at_build_;
+  std::vector<uint32_t> candidate_row_start_, candidate_partner_;  // CSR, N + 1 and per candidate
+  std::vector<uint32_t> active_candidate_;  // per active entry: its candidate entry
+  std::vector<Vec3> position_at_refresh_;
 };
 
 }  // namespace grainlab

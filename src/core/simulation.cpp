@@ -14,9 +14,11 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
       table_(std::move(table)),
       settings_(settings),
       pieces_(table_.pieces()),
-      neighbors_(settings.skin) {
+      neighbors_(settings.skin, settings.skin * settings.list_skin_fraction) {
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time step must be > 0");
   if (!(settings_.skin > 0.0)) throw std::invalid_argument("Verlet skin must be > 0");
+  if (!(settings_.list_skin_fraction > 0.0 && settings_.list_skin_fraction <= 1.0))
+    throw std::invalid_argument("the list skin fraction must be in (0, 1]");
   rebuild_neighbors();
   compute_forces(0.0, false);
 }
@@ -27,15 +29,32 @@ void Simulation::rebuild_neighbors() {
   index_entry_owners();
 }
 
+void Simulation::refresh_active_pairs() {
+  entry_owners_ = {};  // made anew below
+  neighbors_.refresh(particles_, pairs_, pieces_);
+  index_entry_owners();
+}
+
 void Simulation::step() {
   for (StepListener* l : listeners_) l->before_step(*this);
   // The drift writes the kernel's velocity records on its way; a rebuild reorders the particles,
   // and then the force region writes them again.
   bool records_written = false;
-  if (kick_and_drift(records_written)) {
+  ListUpdate update = kick_and_drift(records_written);
+  // A particle that moved half the list skin may also have moved half the skin this very step
+  // (kick_and_drift tests that only where it could happen before a refresh): decide as every
+  // step would have.
+  if (update == ListUpdate::refresh && neighbors_.needs_rebuild(particles_, walls_))
+    update = ListUpdate::rebuild;
+  if (update == ListUpdate::rebuild) {
     rebuild_neighbors();
     records_written = false;
     for (StepListener* l : listeners_) l->after_rebuild(*this);
+  } else if (update == ListUpdate::refresh) {
+    // The particles keep their order; the records are written again only because whether the
+    // kernel runs depends on the list not being empty.
+    refresh_active_pairs();
+    records_written = false;
   }
   compute_forces(settings_.time_step, true, records_written);
   time_ += settings_.time_step;
@@ -52,22 +71,26 @@ void Simulation::scale_positions(const Vec3& centre, double factor) {
 }
 
 // First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
-// Returns whether the neighbour list must be rebuilt: the check of each particle's displacement
-// since the last rebuild is made in the same loop (one parallel region, not two). When the
-// vectorised kernel runs, the same pass writes its velocity records (particle_records: the
-// half-step velocities just made and the end-of-step estimates from the forces held), tile by
-// tile while the tile's velocities and forces are still in the caches, and sets records_written;
-// the force region then skips its own records stage.
-bool Simulation::kick_and_drift(bool& records_written) {
+// Returns what the neighbour lists need: the checks of each particle's displacement since the
+// last selection of the active list (and, where it could matter before the next one, since the
+// last rebuild) are made in the same loop (one parallel region, not two). When the vectorised
+// kernel runs, the same pass writes its velocity records (particle_records: the half-step
+// velocities just made and the end-of-step estimates from the forces held), tile by tile while
+// the tile's velocities and forces are still in the caches, and sets records_written; the force
+// region then skips its own records stage.
+Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
   // (the list's positions are only looked at when it was built for this many particles)
   const bool check_particles = neighbors_.built_for(p.size());
+  // (the test against the build's positions only where it could come true before a refresh;
+  // a refresh step makes it in full in step())
+  const bool check_rebuild = check_particles && neighbors_.rebuild_possible_before_refresh();
   records_written = uses_pair_kernel();
   constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
-  int moved = 0;
-#pragma omp parallel reduction(| : moved) if (n > parallel_threshold)
+  int moved = 0, stale = 0;
+#pragma omp parallel reduction(| : moved, stale) if (n > parallel_threshold)
   {
     const IndexBlock block = thread_block(n);
     for (long first = block.first; first < block.end; first += tile) {
@@ -77,7 +100,10 @@ bool Simulation::kick_and_drift(bool& records_written) {
         p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
         p.position[i] += dt * p.velocity[i];
         p.rotation[i] += dt * p.angular_velocity[i];
-        if (check_particles) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
+        if (check_particles) {
+          stale |= neighbors_.moved_beyond_half_list_skin(i, p.position[i]) ? 1 : 0;
+          if (check_rebuild) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
+        }
       }
       if (records_written) write_particle_records(dt, {first, end});
     }
@@ -86,7 +112,8 @@ bool Simulation::kick_and_drift(bool& records_written) {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
     w.point += dt * w.velocity;
   }
-  return moved != 0 || !neighbors_.walls_and_count_allow(p.size(), walls_);
+  if (moved != 0 || !neighbors_.walls_and_count_allow(p.size(), walls_)) return ListUpdate::rebuild;
+  return stale != 0 ? ListUpdate::refresh : ListUpdate::none;
 }
 
 // Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:
@@ -265,7 +292,7 @@ std::vector<Wall> read_walls(StateReader& in) {
   return walls;
 }
 
-constexpr uint64_t state_magic = 0x67726e6c61623034;  // "grnlab04"
+constexpr uint64_t state_magic = 0x67726e6c61623035;  // "grnlab05"
 
 }  // namespace
 
@@ -281,6 +308,7 @@ void Simulation::save_state(StateWriter& out) const {
   const_cast<WallContacts&>(wall_contacts_).for_each_field(write);
   const_cast<NeighborSearch&>(neighbors_).for_each_field(write);
   out.value(const_cast<NeighborSearch&>(neighbors_).rebuild_count_ref());
+  out.value(const_cast<NeighborSearch&>(neighbors_).refresh_count_ref());
   out.value(time_), out.value(step_count_), out.value(max_overlap_fraction_),
       out.value(max_speed2_), out.value(external_forces_);
 }
@@ -302,7 +330,7 @@ Simulation::Simulation(StateReader& in, PairTable table)
   if (entries.size() != table_.entries().size())
     throw std::runtime_error("the checkpoint's materials do not match the configuration");
   table_.restore_entries(entries);
-  neighbors_ = NeighborSearch(settings_.skin);
+  neighbors_ = NeighborSearch(settings_.skin, settings_.skin * settings_.list_skin_fraction);
   auto read = [&](auto& field) { in.array(field); };
   particles_.for_each_field(read);
   walls_ = read_walls(in);
@@ -310,6 +338,7 @@ Simulation::Simulation(StateReader& in, PairTable table)
   wall_contacts_.for_each_field(read);
   neighbors_.for_each_field(read);
   neighbors_.rebuild_count_ref() = in.value<long>();
+  neighbors_.refresh_count_ref() = in.value<long>();
   time_ = in.value<double>(), step_count_ = in.value<long>();
   max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
   external_forces_ = in.value<bool>();
@@ -358,6 +387,10 @@ void Simulation::check_restored_state() const {
         field.size() != c.col_pair.size())
       fail("pair contact fields of unexpected length");
   });
+  if (!(settings_.list_skin_fraction > 0.0 && settings_.list_skin_fraction <= 1.0))
+    fail("the list skin fraction is not in (0, 1]");
+  if (const std::string what = neighbors_.inconsistency(n, c.partner.size()); !what.empty())
+    fail(what);
   const WallContacts& wc = wall_contacts_;
   check_rows(wc.row_start, wc.wall.size(), "wall contact");
   for (uint32_t w : wc.wall)

@@ -26,6 +26,9 @@ struct SimulationSettings {
   double dt_fraction = 0.0;            // dt / t_c when dt was derived (0 when given explicitly)
   Vec3 gravity;                        // m/s^2
   double skin = 0.0;                   // Verlet skin, m
+  // The active pair list's skin as a fraction of `skin`, in (0, 1]; 1 keeps every candidate.
+  // Results do not depend on it (core/neighbor_search.hpp).
+  double list_skin_fraction = default_list_skin_fraction;
   double max_speed = 100.0;            // m/s; a faster particle means the run has blown up
   double max_overlap_fraction = 0.05;  // of the smaller radius
   // The config key that sets the time step, named in the advice of a BlowUpError.
@@ -94,6 +97,8 @@ class Simulation {
   const PairContacts& pair_contacts() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }
+  // Selections of the active pair list: one per rebuild, and the refreshes between them.
+  long list_refresh_count() const { return neighbors_.refresh_count(); }
 
   double kinetic_energy() const;     // translational + rotational, J
   long touching_pair_count() const;  // particle-particle contacts with F_n > 0
@@ -107,9 +112,11 @@ class Simulation {
   long walls_handed_to_scalar_law() const { return walls_handed_to_scalar_law_; }
 
  private:
-  // true: the neighbour list must be rebuilt. records_written: whether it wrote the kernel's
-  // velocity records for the force evaluation that follows.
-  bool kick_and_drift(bool& records_written);
+  // What the neighbour lists need after the drift: nothing, a new selection of the active list,
+  // or a rebuild. records_written: whether it wrote the kernel's velocity records for the force
+  // evaluation that follows.
+  enum class ListUpdate { none, refresh, rebuild };
+  ListUpdate kick_and_drift(bool& records_written);
   // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
   // the first evaluation of a fresh state, when no contact spring may advance). close_step: end
   // with the second half kick. records_written: the kernel's velocity records are those of the
@@ -132,6 +139,7 @@ class Simulation {
   double half_kick_particles(IndexBlock block);
   void half_kick_walls();
   void rebuild_neighbors();
+  void refresh_active_pairs();
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;

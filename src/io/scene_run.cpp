@@ -222,6 +222,7 @@ void run(const std::string& config_path, const std::string& config_text, SceneSe
   summary["steps"] = sim.step_count();
   summary["simulated_time_s"] = sim.time();
   summary["neighbor_rebuilds"] = sim.rebuild_count();
+  summary["neighbor_list_refreshes"] = sim.list_refresh_count();
   summary["kinetic_energy_final_J"] = sim.kinetic_energy();
   summary["touching_contacts_final"] = sim.touching_pair_count();
   summary["threads"] = omp_get_max_threads();

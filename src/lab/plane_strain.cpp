@@ -170,6 +170,7 @@ void finish(const ElementRun& run, const PlaneStrainProgress& p, const ElementTe
   j["shear_band"]["offset_m"] = band.band.offset;
   j["steps"] = run.sim.step_count();
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
+  j["neighbor_list_refreshes"] = run.sim.list_refresh_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
   const LaboratoryComparison lab = compare_with_laboratory(s.laboratory, s1, p.peak_strain);

@@ -44,6 +44,7 @@ void finish_triaxial(const ElementRun& run, const ShearProgress& p, const Elemen
       p.platen_excess_rows ? p.platen_excess_sum / p.platen_excess_rows : 0.0;
   j["steps"] = run.sim.step_count();
   j["neighbor_rebuilds"] = run.sim.rebuild_count();
+  j["neighbor_list_refreshes"] = run.sim.list_refresh_count();
   j["shearing_wall_time_s"] = run.wall_time_before;
   j["wall_time_s"] = j["preparation_wall_time_s"].get<double>() + run.wall_time_before;
   const LaboratoryComparison lab =

@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <random>
+#include <set>
 
 #include "core/random_insertion.hpp"
 #include "support/scenes.hpp"
@@ -14,8 +15,12 @@ using namespace grainlab::test;
 
 namespace {
 // Beads with random velocities in a 20 x 20 x 30 mm box of plane walls (open at the top unless
-// `closed`), gravity, friction and rolling resistance.
-Simulation random_box(long count, uint64_t seed, bool closed) {
+// `closed`), gravity, friction and rolling resistance (arf; 0: none, so that the vectorised pair
+// kernel runs where the CPU has it). list_skin_fraction: the active pair list's skin; gravity in
+// m/s^2, downwards.
+Simulation random_box(long count, uint64_t seed, bool closed, double arf = 0.05,
+                      double list_skin_fraction = default_list_skin_fraction,
+                      double gravity = 9.81) {
   std::vector<Sphere> spheres;
   std::mt19937_64 rng(seed);
   InsertionRegion box;
@@ -30,8 +35,19 @@ Simulation random_box(long count, uint64_t seed, bool closed) {
                           plane_wall({0.02, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
                           plane_wall({0, 0.02, 0}, {0, -1, 0})};
   if (closed) walls.push_back(plane_wall({0, 0, 0.03}, {0, 0, -1}));
-  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3, 0.05),
-                    settings_for(0.9e-3, 0.5, 0.1, {0, 0, -9.81}));
+  SimulationSettings settings = settings_for(0.9e-3, 0.5, 0.1, {0, 0, -gravity});
+  settings.list_skin_fraction = list_skin_fraction;
+  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3, arf), settings);
+}
+
+// Positions, velocities and spins bit for bit equal.
+void expect_same_bits(const ParticleStore& x, const ParticleStore& y) {
+  ASSERT_EQ(x.size(), y.size());
+  EXPECT_EQ(x.id, y.id);
+  EXPECT_EQ(0, std::memcmp(x.position.data(), y.position.data(), x.size() * sizeof(Vec3)));
+  EXPECT_EQ(0, std::memcmp(x.velocity.data(), y.velocity.data(), x.size() * sizeof(Vec3)));
+  EXPECT_EQ(0, std::memcmp(x.angular_velocity.data(), y.angular_velocity.data(),
+                           x.size() * sizeof(Vec3)));
 }
 
 ParticleStore run_pile(int threads) {
@@ -52,12 +68,7 @@ TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalStates) {
   const ParticleStore a = run_pile(1);
   const ParticleStore b = run_pile(2);
   omp_set_num_threads(omp_get_num_procs());
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(a.id, b.id);
-  EXPECT_EQ(0, std::memcmp(a.position.data(), b.position.data(), a.size() * sizeof(Vec3)));
-  EXPECT_EQ(0, std::memcmp(a.velocity.data(), b.velocity.data(), a.size() * sizeof(Vec3)));
-  EXPECT_EQ(0, std::memcmp(a.angular_velocity.data(), b.angular_velocity.data(),
-                           a.size() * sizeof(Vec3)));
+  expect_same_bits(a, b);
 }
 
 TEST(Determinism, RestoredStateContinuesBitIdentically) {
@@ -74,6 +85,8 @@ TEST(Determinism, RestoredStateContinuesBitIdentically) {
   b.advance(5000);
   EXPECT_GT(a.rebuild_count(), 3);
   EXPECT_EQ(a.rebuild_count(), b.rebuild_count());
+  EXPECT_GT(a.list_refresh_count(), a.rebuild_count());
+  EXPECT_EQ(a.list_refresh_count(), b.list_refresh_count());
   EXPECT_EQ(a.time(), b.time());
   const ParticleStore &x = a.particles(), &y = b.particles();
   EXPECT_EQ(0, std::memcmp(x.position.data(), y.position.data(), x.size() * sizeof(Vec3)));
@@ -103,7 +116,8 @@ TEST(Determinism, TruncatedStateIsRefused) {
 
 TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
   // The first 8 bytes are the format's magic, "grnlab0" and a version digit: a state written by
-  // another version (format 3 stored two torques per entry, format 2 also k_n and c_n) is refused
+  // another version (format 4 kept no candidate list, format 3 stored two torques per entry,
+  // format 2 also k_n and c_n) is refused
   // with both versions named.
   std::string bytes = one_bead_state();
   bytes[0] = '3';  // little-endian: the version is the lowest byte
@@ -113,9 +127,99 @@ TEST(Determinism, StateOfAnotherFormatIsRefusedByVersion) {
     ADD_FAILURE() << "a state of format 3 was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("format 3"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("format 4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("format 5"), std::string::npos) << e.what();
   }
   bytes[7] = 'x';  // not a grainlab state at all
   StateReader foreign(bytes);
   EXPECT_THROW(Simulation(foreign, one_bead_table), std::runtime_error);
+}
+
+namespace {
+// The pile of OneAndTwoThreadsGiveBitIdenticalStates, 1 thread, with the given active-list skin.
+Simulation pile_with_list_skin(double arf, double list_skin_fraction, long steps) {
+  omp_set_num_threads(1);
+  Simulation sim = random_box(1000, 11, true, arf, list_skin_fraction);
+  sim.advance(steps);
+  omp_set_num_threads(omp_get_num_procs());
+  return sim;
+}
+
+}  // namespace
+
+// The active pair list (core/neighbor_search.hpp) leaves out candidates beyond a thinner skin and
+// selects again when a bead has moved half of it. The forces of the entries left out are zero
+// and the order of the others is kept, so the run must be bit for bit the run over every
+// candidate (fraction 1), for the scalar law (rolling resistance) and for the pair kernel alike;
+// a contact the refreshes missed would change the bits.
+TEST(Determinism, ActivePairListGivesTheBitsOfTheFullList) {
+  for (const double arf : {0.05, 0.0}) {
+    const long steps = 20000;
+    const Simulation full = pile_with_list_skin(arf, 1.0, steps);
+    const Simulation thin = pile_with_list_skin(arf, default_list_skin_fraction, steps);
+    SCOPED_TRACE(arf > 0.0 ? "scalar law (rolling resistance)" : full.pair_kernel_name());
+    EXPECT_EQ(full.rebuild_count(), thin.rebuild_count()) << "the skin alone decides rebuilds";
+    EXPECT_EQ(full.list_refresh_count(), full.rebuild_count()) << "fraction 1: one per rebuild";
+    EXPECT_GT(thin.list_refresh_count(), 3 * thin.rebuild_count())
+        << "the run must exercise refreshes between rebuilds";
+    EXPECT_LT(thin.pair_contacts().size(), full.pair_contacts().size());
+    expect_same_bits(full.particles(), thin.particles());
+  }
+}
+
+namespace {
+// 8 x 8 x 10 beads of radius 0.94-0.96 mm on a 1.90 mm lattice, shifted by up to 0.01 mm, in a
+// closed box of plane walls that fits the lattice: about half of the neighbours start
+// overlapping (by up to about 4 % of a radius), and the beads push each other about and stay in
+// contact.
+Simulation confined_lattice(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const double spacing = 1.90e-3;
+  const int nx = 8, ny = 8, nz = 10;
+  ParticleStore p;
+  uint32_t id = 0;
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        const Vec3 jitter{uniform01(rng) - 0.5, uniform01(rng) - 0.5, uniform01(rng) - 0.5};
+        const Vec3 centre = Vec3{(x + 0.5) * spacing, (y + 0.5) * spacing, (z + 0.5) * spacing} +
+                            0.02e-3 * jitter;
+        p.add(id++, 0, 0.94e-3 + 0.02e-3 * uniform01(rng), glass_density, centre, {}, {}, false);
+      }
+  const Vec3 top{nx * spacing, ny * spacing, nz * spacing};
+  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}),     plane_wall(top, {0, 0, -1}),
+                          plane_wall({0, 0, 0}, {1, 0, 0}),     plane_wall(top, {-1, 0, 0}),
+                          plane_wall({0, 0, 0}, {0, 1, 0}),     plane_wall(top, {0, -1, 0})};
+  return Simulation(std::move(p), walls, two_material_table(0.5, 0.3),
+                    settings_for(0.94e-3, 0.5, 0.1, {0, 0, -9.81}));
+}
+}  // namespace
+
+// Every pair of beads that overlaps, found by brute force, is in the active list at every step
+// checked, while the beads of a tight lattice push each other about (refreshes between the
+// checks; ActivePairListGivesTheBitsOfTheFullList covers rebuilds).
+TEST(Determinism, ActivePairListHoldsEveryTouchingPair) {
+  omp_set_num_threads(1);
+  Simulation sim = confined_lattice(7);
+  long touching_checked = 0;
+  for (int check = 0; check < 200; ++check) {
+    sim.advance(100);
+    const ParticleStore& p = sim.particles();
+    const PairContacts& c = sim.pair_contacts();
+    std::set<std::pair<uint32_t, uint32_t>> listed;
+    for (size_t i = 0; i < p.size(); ++i)
+      for (uint32_t e = c.row_start[i]; e < c.row_start[i + 1]; ++e)
+        listed.insert({static_cast<uint32_t>(i), c.partner[e]});
+    for (size_t i = 0; i < p.size(); ++i)
+      for (size_t j = i + 1; j < p.size(); ++j) {
+        const double reach = p.radius[i] + p.radius[j];
+        if (norm2(p.position[j] - p.position[i]) >= reach * reach) continue;
+        ++touching_checked;
+        ASSERT_TRUE(listed.count({static_cast<uint32_t>(i), static_cast<uint32_t>(j)}))
+            << "beads " << p.id[i] << " and " << p.id[j] << " overlap at step "
+            << sim.step_count() << " but are not in the active list";
+      }
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_GT(touching_checked, 50000) << "the run must check many contacts";
+  EXPECT_GT(sim.list_refresh_count(), 10) << "the run must refresh the active list";
 }

@@ -108,3 +108,143 @@ TEST(NeighborSearch, RebuildTriggeredByHalfSkinMotion) {
   p.position[7].x += 0.02 * skin;
   EXPECT_TRUE(search.needs_rebuild(p, {}));
 }
+
+namespace {
+// The pairs of `ids` (ordered by id) within `skin` of touching, by brute force.
+std::set<std::pair<uint32_t, uint32_t>> pairs_within(const ParticleStore& p, double skin) {
+  std::set<std::pair<uint32_t, uint32_t>> out;
+  for (size_t i = 0; i < p.size(); ++i)
+    for (size_t j = i + 1; j < p.size(); ++j) {
+      const double reach = p.radius[i] + p.radius[j] + skin;
+      if (norm2(p.position[i] - p.position[j]) < reach * reach)
+        out.insert({std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j])});
+    }
+  return out;
+}
+std::set<std::pair<uint32_t, uint32_t>> listed_pairs(const ParticleStore& p,
+                                                     const std::vector<uint32_t>& row_start,
+                                                     const std::vector<uint32_t>& partner) {
+  std::set<std::pair<uint32_t, uint32_t>> out;
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e)
+      out.insert({std::min(p.id[i], p.id[partner[e]]), std::max(p.id[i], p.id[partner[e]])});
+  return out;
+}
+// Whether each row of `active` lists its partners in the order of the same row of candidates
+// (a subsequence), so that the force sums keep their order.
+bool rows_are_ordered_subsets(const NeighborSearch& s, const PairContacts& active, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t c = s.candidate_row_start()[i];
+    for (uint32_t e = active.row_start[i]; e < active.row_start[i + 1]; ++e) {
+      while (c < s.candidate_row_start()[i + 1] && s.candidate_partner()[c] != active.partner[e])
+        ++c;
+      if (c == s.candidate_row_start()[i + 1]) return false;
+      ++c;
+    }
+  }
+  return true;
+}
+// A search with the given skins, rebuilt once on p (no walls), and its active list.
+struct BuiltSearch {
+  NeighborSearch search;
+  PairContacts active;
+  WallContacts walls;
+  BuiltSearch(ParticleStore& p, double skin, double list_skin) : search(skin, list_skin) {
+    search.rebuild(p, {}, active, walls, {});
+  }
+};
+}  // namespace
+
+TEST(NeighborSearch, ActiveListHoldsThePairsWithinTheListSkin) {
+  ParticleStore p = random_particles(600, 3);
+  const double skin = 0.3e-3, list_skin = 0.1e-3;
+  BuiltSearch built(p, skin, list_skin);
+  NeighborSearch& search = built.search;
+  PairContacts& active = built.active;
+  const auto candidates = pairs_within(p, skin), within = pairs_within(p, list_skin);
+  EXPECT_EQ(listed_pairs(p, search.candidate_row_start(), search.candidate_partner()), candidates);
+  EXPECT_EQ(listed_pairs(p, active.row_start, active.partner), within);
+  EXPECT_EQ(active.size(), within.size()) << "no duplicates";
+  EXPECT_LT(within.size(), candidates.size()) << "the thinner skin must leave pairs out";
+  EXPECT_GT(within.size(), 100u);
+  EXPECT_TRUE(rows_are_ordered_subsets(search, active, p.size()));
+  size_t transposed = 0;
+  for (size_t j = 0; j < p.size(); ++j)
+    for (uint32_t k = active.col_start[j]; k < active.col_start[j + 1]; ++k, ++transposed)
+      EXPECT_EQ(active.partner[active.col_pair[k]], j);
+  EXPECT_EQ(transposed, active.size());
+  EXPECT_EQ(active.result.size(), active.size());
+  EXPECT_EQ(search.inconsistency(p.size(), active.size()), "");
+  EXPECT_NE(search.inconsistency(p.size(), active.size() + 1), "");
+}
+
+TEST(NeighborSearch, RefreshFollowsMotionAndKeepsHistories) {
+  ParticleStore p = random_particles(600, 4);
+  const double skin = 0.3e-3, list_skin = 0.05e-3;
+  BuiltSearch built(p, skin, list_skin);
+  NeighborSearch& search = built.search;
+  PairContacts& active = built.active;
+  // A history on every second entry, tagged with its pair of ids.
+  auto tag = [](uint32_t a, uint32_t b) {
+    return Vec3{double(std::min(a, b)), double(std::max(a, b)), 1.0};
+  };
+  std::set<std::pair<uint32_t, uint32_t>> tagged;
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = active.row_start[i]; e < active.row_start[i + 1]; e += 2) {
+      const uint32_t a = p.id[i], b = p.id[active.partner[e]];
+      active.sliding_spring[e] = tag(a, b);
+      tagged.insert({std::min(a, b), std::max(a, b)});
+    }
+  // Move every bead by up to just under half the skin (the candidates stay valid), in random
+  // directions, and select again.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (Vec3& x : p.position) {
+    const Vec3 d{u(rng), u(rng), u(rng)};
+    x += (0.49 * skin / std::sqrt(3.0)) * d;
+  }
+  EXPECT_FALSE(search.needs_rebuild(p, {}));
+  const long before = search.refresh_count();
+  search.refresh(p, active, {});
+  EXPECT_EQ(search.refresh_count(), before + 1);
+  EXPECT_TRUE(rows_are_ordered_subsets(search, active, p.size()));
+  // Every pair now within the list skin is active; so is every tagged pair, with its tag, even
+  // where the motion took it beyond the list skin; every other entry starts without a history.
+  const auto within = pairs_within(p, list_skin), listed = listed_pairs(p, active.row_start,
+                                                                          active.partner);
+  for (const auto& pair : within) EXPECT_TRUE(listed.count(pair));
+  size_t tags_kept = 0, tagged_beyond = 0;
+  for (size_t i = 0; i < p.size(); ++i)
+    for (uint32_t e = active.row_start[i]; e < active.row_start[i + 1]; ++e) {
+      const uint32_t a = p.id[i], b = p.id[active.partner[e]];
+      const std::pair<uint32_t, uint32_t> pair{std::min(a, b), std::max(a, b)};
+      if (tagged.count(pair)) {
+        EXPECT_EQ(active.sliding_spring[e], tag(a, b));
+        ++tags_kept;
+        tagged_beyond += !within.count(pair);
+      } else {
+        EXPECT_TRUE(within.count(pair)) << "only pairs within the list skin or with a history";
+        EXPECT_EQ(active.sliding_spring[e], Vec3{});
+      }
+    }
+  EXPECT_EQ(tags_kept, tagged.size());
+  EXPECT_GT(tagged_beyond, 0u) << "the motion must carry some tagged pair beyond the list skin";
+  EXPECT_GT(listed.size() - tags_kept, 0u);
+  EXPECT_EQ(search.inconsistency(p.size(), active.size()), "");
+}
+
+TEST(NeighborSearch, RefreshTriggeredByHalfListSkinMotion) {
+  ParticleStore p = random_particles(50, 9);
+  const double skin = 0.2e-3, list_skin = 0.02e-3;
+  BuiltSearch built(p, skin, list_skin);
+  NeighborSearch& search = built.search;
+  PairContacts& pairs = built.active;
+  EXPECT_FALSE(search.moved_beyond_half_list_skin(7, p.position[7]));
+  p.position[7].x += 0.49 * list_skin;
+  EXPECT_FALSE(search.moved_beyond_half_list_skin(7, p.position[7]));
+  p.position[7].x += 0.02 * list_skin;
+  EXPECT_TRUE(search.moved_beyond_half_list_skin(7, p.position[7]));
+  search.refresh(p, pairs, {});
+  EXPECT_FALSE(search.moved_beyond_half_list_skin(7, p.position[7])) << "measured from the refresh";
+  EXPECT_FALSE(search.needs_rebuild(p, {})) << "the rebuild still counts from the rebuild";
+}
