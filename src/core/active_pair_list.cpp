@@ -119,8 +119,7 @@ void NeighborSearch::refresh(const ParticleStore& p, PairContacts& pairs, Contac
 
 std::string NeighborSearch::inconsistency(size_t particles, size_t active_entries) const {
   const std::vector<uint32_t>& rows = candidate_row_start_;
-  if (rows.size() != particles + 1 || rows.front() != 0 ||
-      rows.back() != candidate_partner_.size())
+  if (rows.size() != particles + 1 || rows.front() != 0 || rows.back() != candidate_partner_.size())
     return "neighbour candidate rows do not match the particles";
   for (size_t i = 0; i < particles; ++i)
     if (rows[i] > rows[i + 1]) return "neighbour candidate rows are not ordered";
@@ -129,7 +128,8 @@ std::string NeighborSearch::inconsistency(size_t particles, size_t active_entrie
   if (active_candidate_.size() != active_entries)
     return "the active pair list does not match its candidates";
   for (uint32_t c : active_candidate_)
-    if (c >= candidate_partner_.size()) return "an active pair names a candidate that does not exist";
+    if (c >= candidate_partner_.size())
+      return "an active pair names a candidate that does not exist";
   if (position_at_refresh_.size() != position_at_build_.size())
     return "the positions of the last list refresh do not match the particles";
   return "";

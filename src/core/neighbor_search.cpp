@@ -178,7 +178,6 @@ void carry_history(const Store& old, const std::vector<KeyedEntry>& old_keys, St
   }
 }
 
-
 // The keys of the entries of `s` (CSR rows per particle) that carry history, sorted; counted
 // first so that the vector is allocated once, at its size.
 template <class Store, class KeyOf>

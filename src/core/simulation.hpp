@@ -22,10 +22,10 @@
 namespace grainlab {
 
 struct SimulationSettings {
-  double time_step = 0.0;              // dt, s
-  double dt_fraction = 0.0;            // dt / t_c when dt was derived (0 when given explicitly)
-  Vec3 gravity;                        // m/s^2
-  double skin = 0.0;                   // Verlet skin, m
+  double time_step = 0.0;    // dt, s
+  double dt_fraction = 0.0;  // dt / t_c when dt was derived (0 when given explicitly)
+  Vec3 gravity;              // m/s^2
+  double skin = 0.0;         // Verlet skin, m
   // The active pair list's skin as a fraction of `skin`, in (0, 1]; 1 keeps every candidate.
   // Results do not depend on it (core/neighbor_search.hpp).
   double list_skin_fraction = default_list_skin_fraction;

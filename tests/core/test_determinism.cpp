@@ -181,14 +181,14 @@ Simulation confined_lattice(uint64_t seed) {
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x) {
         const Vec3 jitter{uniform01(rng) - 0.5, uniform01(rng) - 0.5, uniform01(rng) - 0.5};
-        const Vec3 centre = Vec3{(x + 0.5) * spacing, (y + 0.5) * spacing, (z + 0.5) * spacing} +
-                            0.02e-3 * jitter;
+        const Vec3 centre =
+            Vec3{(x + 0.5) * spacing, (y + 0.5) * spacing, (z + 0.5) * spacing} + 0.02e-3 * jitter;
         p.add(id++, 0, 0.94e-3 + 0.02e-3 * uniform01(rng), glass_density, centre, {}, {}, false);
       }
   const Vec3 top{nx * spacing, ny * spacing, nz * spacing};
-  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}),     plane_wall(top, {0, 0, -1}),
-                          plane_wall({0, 0, 0}, {1, 0, 0}),     plane_wall(top, {-1, 0, 0}),
-                          plane_wall({0, 0, 0}, {0, 1, 0}),     plane_wall(top, {0, -1, 0})};
+  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}), plane_wall(top, {0, 0, -1}),
+                          plane_wall({0, 0, 0}, {1, 0, 0}), plane_wall(top, {-1, 0, 0}),
+                          plane_wall({0, 0, 0}, {0, 1, 0}), plane_wall(top, {0, -1, 0})};
   return Simulation(std::move(p), walls, two_material_table(0.5, 0.3),
                     settings_for(0.94e-3, 0.5, 0.1, {0, 0, -9.81}));
 }
@@ -215,8 +215,8 @@ TEST(Determinism, ActivePairListHoldsEveryTouchingPair) {
         if (norm2(p.position[j] - p.position[i]) >= reach * reach) continue;
         ++touching_checked;
         ASSERT_TRUE(listed.count({static_cast<uint32_t>(i), static_cast<uint32_t>(j)}))
-            << "beads " << p.id[i] << " and " << p.id[j] << " overlap at step "
-            << sim.step_count() << " but are not in the active list";
+            << "beads " << p.id[i] << " and " << p.id[j] << " overlap at step " << sim.step_count()
+            << " but are not in the active list";
       }
   }
   omp_set_num_threads(omp_get_num_procs());

@@ -210,8 +210,8 @@ TEST(NeighborSearch, RefreshFollowsMotionAndKeepsHistories) {
   EXPECT_TRUE(rows_are_ordered_subsets(search, active, p.size()));
   // Every pair now within the list skin is active; so is every tagged pair, with its tag, even
   // where the motion took it beyond the list skin; every other entry starts without a history.
-  const auto within = pairs_within(p, list_skin), listed = listed_pairs(p, active.row_start,
-                                                                          active.partner);
+  const auto within = pairs_within(p, list_skin),
+             listed = listed_pairs(p, active.row_start, active.partner);
   for (const auto& pair : within) EXPECT_TRUE(listed.count(pair));
   size_t tags_kept = 0, tagged_beyond = 0;
   for (size_t i = 0; i < p.size(); ++i)
