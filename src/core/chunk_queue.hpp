@@ -1,6 +1,7 @@
 // Work sharing for the stages of a step that run inside one parallel region
 // (Simulation::compute_forces). [0, n) is cut into the team's blocks (the partition
-// schedule(static) makes, core/thread_block.hpp) and each block into chunks. Every thread first
+// schedule(static) makes, core/thread_block.hpp, or the one the threads' speeds make,
+// core/thread_partition.hpp) and each block into chunks. Every thread first
 // takes the chunks of its own block from its front, in order, so that in a balanced step it works
 // on the same particles, and the same cache lines, as in the stage before and the step before.
 // Then it takes chunks of the other threads' blocks from their backs, as long as the owner has
@@ -28,6 +29,7 @@
 #include <memory>
 
 #include "core/thread_block.hpp"
+#include "core/thread_partition.hpp"
 
 namespace grainlab {
 
@@ -38,46 +40,49 @@ class ChunkQueue {
   ChunkQueue(const ChunkQueue&) {}
   ChunkQueue& operator=(const ChunkQueue&) { return *this; }
 
-  // Serial, before the parallel region: `team` blocks of [0, n), taken `chunk` indices at a
-  // time. `team` must be the size of the team that will call drain (otherwise each thread falls
+  // Serial, before the parallel region: `team` equal blocks of [0, n), taken `chunk` indices at
+  // a time. `team` must be the size of the team that will call drain (otherwise each thread falls
   // back to its own block of [0, n), without sharing).
   void plan(long n, int team, long chunk) {
-    if (team > capacity_) {
-      cursors_ = std::make_unique<Cursor[]>(team);
-      capacity_ = team;
-    }
-    n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
-    // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 1 chunks
-    // is taken in larger chunks; the first block is the largest)
-    constexpr long max_chunks = 0xffffffffL;
-    const IndexBlock largest = block_of(n, team, 0);
-    chunk_ = std::max(chunk_, (largest.end - largest.first + max_chunks - 1) / max_chunks);
-    for (int t = 0; t < team; ++t) {
-      const IndexBlock b = block_of(n, team, t);
-      Cursor& c = cursors_[t];
-      c.first = b.first, c.end = b.end;
-      c.untaken.store(pack(0, (b.end - b.first + chunk_ - 1) / chunk_), std::memory_order_relaxed);
-    }
+    plan_blocks(n, team, chunk, [&](int t) { return block_of(n, team, t); });
   }
+  // The same with the blocks of a partition (core/thread_partition.hpp).
+  void plan(const ThreadPartition& partition, long chunk) {
+    plan_blocks(partition.size(), partition.team(), chunk,
+                [&](int t) { return partition.block(t); });
+  }
+
+  // What a thread did on its own block in one drain: indices, and the seconds it took.
+  struct OwnWork {
+    long count = 0;
+    double seconds = 0.0;
+  };
 
   // Inside the region, by every thread of the team: calls chunk(first, end) for every chunk of
   // its own block not taken by others, then for others' chunks while their owners lag; the team
   // together takes every index of [0, n) exactly once. What the chunks write is visible to the
   // other threads after the next barrier.
+  // Returns what the thread did on its own block (the time it took to do it: a thread's speed,
+  // core/thread_partition.hpp).
   template <class F>
-  void drain(F&& chunk) {
+  OwnWork drain(F&& chunk) {
     const int team = omp_get_num_threads(), me = omp_get_thread_num();
+    OwnWork own_work;
     if (team != team_) {  // not the planned team: no sharing, each thread its own block
       const IndexBlock b = thread_block(n_);
       if (b.first < b.end) chunk(b.first, b.end);
-      return;
+      return own_work;
     }
     Cursor& own = cursors_[me];
-    for (long k = 0; take(own, 0, k, true);) run(own, k, chunk);  // own block, from the front
+    const double start = omp_get_wtime();
+    for (long k = 0; take(own, 0, k, true);)  // own block, from the front
+      own_work.count += run(own, k, chunk);
+    own_work.seconds = omp_get_wtime() - start;
     for (int t = 1; t < team; ++t) {  // the others', from the back, while their owners lag
       Cursor& other = cursors_[(me + t) % team];
       for (long k = 0; take(other, chunks_left_to_owner, k, false);) run(other, k, chunk);
     }
+    return own_work;
   }
 
  private:
@@ -109,9 +114,31 @@ class ChunkQueue {
     }
   }
   template <class F>
-  void run(const Cursor& c, long k, F& chunk) const {
-    const long first = c.first + k * chunk_;
-    chunk(first, std::min(first + chunk_, c.end));
+  long run(const Cursor& c, long k, F& chunk) const {  // returns the chunk's length
+    const long first = c.first + k * chunk_, end = std::min(first + chunk_, c.end);
+    chunk(first, end);
+    return end - first;
+  }
+  template <class BlockOf>
+  void plan_blocks(long n, int team, long chunk, BlockOf&& block) {
+    if (team > capacity_) {
+      cursors_ = std::make_unique<Cursor[]>(team);
+      capacity_ = team;
+    }
+    n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
+    // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 1 chunks
+    // is taken in larger chunks)
+    constexpr long max_chunks = 0xffffffffL;
+    for (int t = 0; t < team; ++t) {
+      const IndexBlock b = block(t);
+      chunk_ = std::max(chunk_, (b.end - b.first + max_chunks - 1) / max_chunks);
+    }
+    for (int t = 0; t < team; ++t) {
+      const IndexBlock b = block(t);
+      Cursor& c = cursors_[t];
+      c.first = b.first, c.end = b.end;
+      c.untaken.store(pack(0, (b.end - b.first + chunk_ - 1) / chunk_), std::memory_order_relaxed);
+    }
   }
   std::unique_ptr<Cursor[]> cursors_;
   int capacity_ = 0, team_ = 0;

@@ -57,6 +57,7 @@ void Simulation::step() {
     records_written = false;
   }
   compute_forces(settings_.time_step, true, records_written);
+  partition_.update();
   time_ += settings_.time_step;
   ++step_count_;
   check_health();
@@ -90,9 +91,11 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   records_written = uses_pair_kernel();
   constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
   int moved = 0, stale = 0;
+  partition_.plan(n, step_team(n));
 #pragma omp parallel reduction(| : moved, stale) if (n > parallel_threshold)
   {
-    const IndexBlock block = thread_block(n);
+    const IndexBlock block = partition_.thread_block_of(n);
+    const double start = omp_get_wtime();
     for (long first = block.first; first < block.end; first += tile) {
       const long end = std::min(block.end, first + tile);
       for (long i = first; i < end; ++i) {
@@ -107,6 +110,7 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
       }
       if (records_written) write_particle_records(dt, {first, end});
     }
+    partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
   }
   for (Wall& w : walls_) {
     if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
@@ -167,12 +171,13 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   prepare_pair_forces();
   prepare_wall_lanes();
   const bool parallel = n > parallel_threshold;
-  const int team = parallel ? omp_get_max_threads() : 1;
+  const int team = step_team(n);
   const long chunk = stage_chunk(n, team);
   const bool records = uses_pair_kernel() && !records_written;
-  if (records) record_chunks_.plan(n, team, chunk);
-  contact_chunks_.plan(n, team, chunk);
-  particle_chunks_.plan(n, team, chunk);
+  partition_.plan(n, team);  // (the drift's blocks, unless this is a fresh state)
+  if (records) record_chunks_.plan(partition_, chunk);
+  contact_chunks_.plan(partition_, chunk);
+  particle_chunks_.plan(partition_, chunk);
   double max_fraction = 0.0, max_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
   // One region, up to three stages, a barrier after each but the last: the pair rows and wall
@@ -189,15 +194,17 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
       });
 #pragma omp barrier
     }
-    contact_chunks_.drain([&](long first, long end) {
+    const ChunkQueue::OwnWork contacts = contact_chunks_.drain([&](long first, long end) {
       max_fraction = std::max({max_fraction, compute_pair_forces(drift, {first, end}, handed_back),
                                compute_wall_forces(drift, {first, end}, walls_handed_back)});
     });
 #pragma omp barrier
-    particle_chunks_.drain([&](long first, long end) {
+    const ChunkQueue::OwnWork gathered = particle_chunks_.drain([&](long first, long end) {
       gather_particles({first, end});
       if (close_step) max_speed2 = std::max(max_speed2, half_kick_particles({first, end}));
     });
+    partition_.record(omp_get_thread_num(), contacts.count + gathered.count,
+                      contacts.seconds + gathered.seconds);
   }
   max_overlap_fraction_ = max_fraction;
   pairs_handed_to_scalar_law_ = handed_back;

@@ -17,6 +17,7 @@
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
+#include "core/thread_partition.hpp"
 #include "geometry/wall.hpp"
 
 namespace grainlab {
@@ -176,6 +177,11 @@ class Simulation {
   // Who takes which particles in compute_forces' three stages (records; pair rows and wall
   // contacts; gather and half kick): planned afresh at each call.
   ChunkQueue record_chunks_, contact_chunks_, particle_chunks_;
+  // The block each thread starts from in every stage, sized by the threads' measured speeds
+  // (planned in kick_and_drift and compute_forces, updated after each step).
+  ThreadPartition partition_;
+  // The team the step's regions run with (1 below parallel_threshold particles).
+  int step_team(long n) const { return n > parallel_threshold ? omp_get_max_threads() : 1; }
   std::vector<StepListener*> listeners_;
 };
 
