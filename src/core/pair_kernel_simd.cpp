@@ -174,16 +174,14 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const vd& normal_force = law.normal_force;
   const vd fraction = overlap / (rj < ri ? rj : ri);
 
-  // Which lanes to store: the batch's contacts, less those handed back to the scalar law.
-  double max_fraction = 0.0;
-  unsigned store = 0;
-  for (int l = 0; l < b.count; ++l) {
-    if (max_fraction < fraction[l]) max_fraction = fraction[l];
-    if (drifted && begun[l])
-      deferred[deferred_count++] = b.e[l];
-    else
-      store |= 1u << l;
-  }
+  // Which lanes to store: the batch's contacts, less those handed back to the scalar law (as
+  // mask bits, without a branch per lane).
+  const unsigned used = (1u << b.count) - 1u;
+  const unsigned handed_back = drifted ? lane_bits(begun) & used : 0u;
+  const unsigned store = used & ~handed_back;
+  for (unsigned h = handed_back; h != 0; h &= h - 1)
+    deferred[deferred_count++] = b.e[__builtin_ctz(h)];
+  const double max_fraction = largest_ordered(fraction, used);
   // The results, one vector per value, transposed to one 64-byte PairResult per lane and stored
   // whole (a line each, where a scatter per value would write 8 values across 8 lines).
   const vd value[lanes] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x,
@@ -191,20 +189,12 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   vd row[lanes];
   transpose8(value, row);
   static_assert(pair_result_size == lanes);
-  for (int l = 0; l < b.count; ++l)
+  // (a loop of constant length, unrolled: the rows stay in registers)
+#pragma GCC unroll 8
+  for (int l = 0; l < lanes; ++l)
     if (store >> l & 1u)
       __builtin_memcpy(in.result + size_t{b.e[l]} * pair_result_size, &row[l], sizeof row[l]);
-#if defined(__AVX512F__)
-  // the springs: a scatter instruction per component instead of a lane extract and a store per
-  // lane
-  const __mmask8 m = static_cast<__mmask8>(store);
-  _mm512_mask_i32scatter_pd(in.sliding_spring, m, e.times3, spring.x, 8);
-  _mm512_mask_i32scatter_pd(in.sliding_spring + 1, m, e.times3, spring.y, 8);
-  _mm512_mask_i32scatter_pd(in.sliding_spring + 2, m, e.times3, spring.z, 8);
-#else
-  for (int l = 0; l < b.count; ++l)
-    if (store >> l & 1u) store_lane3(in.sliding_spring, b.e[l], spring, l);
-#endif
+  store_lanes3(in.sliding_spring, b.e, spring, store);
   return max_fraction;
 }
 
@@ -364,16 +354,15 @@ unsigned wall_law(const SimdPairInput& in, const SimdWallInput& walls, SimdWallB
                                     load_lanes3(walls.sliding_spring, lane_index(b.entry)));
   const V3 torque = lever * law.arm;
 
-  unsigned handed_back = 0;
+  const unsigned used = (1u << count) - 1u;
+  const unsigned handed_back = drifted ? lane_bits(begun) & used : 0u;
+  const unsigned store = used & ~handed_back;
+  store_lanes3(walls.force_on_particle, b.entry, law.force_on_a, store);
+  store_lanes3(walls.torque_on_particle, b.entry, torque, store);
+  store_lanes3(walls.sliding_spring, b.entry, law.spring, store);
   for (int l = 0; l < count; ++l) {
+    if (!(store >> l & 1u)) continue;
     const uint32_t e = b.entry[l];
-    if (drifted && begun[l]) {
-      handed_back |= 1u << l;
-      continue;
-    }
-    store_lane3(walls.force_on_particle, e, law.force_on_a, l);
-    store_lane3(walls.torque_on_particle, e, torque, l);
-    store_lane3(walls.sliding_spring, e, law.spring, l);
     walls.normal_stiffness[e] = normal_stiffness[l];
     walls.normal_force[e] = law.normal_force[l];
   }

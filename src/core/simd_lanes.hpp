@@ -37,6 +37,40 @@ GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
 #endif
 }
 
+// The lanes where m is true, as bits (lane l: bit l).
+GRAINLAB_LANES_INLINE unsigned lane_bits(vmask m) {
+#if defined(__AVX512F__)
+  return _mm512_cmpneq_epi64_mask(reinterpret_cast<__m512i>(m), _mm512_setzero_si512());
+#else
+  unsigned bits = 0;
+  for (int l = 0; l < lanes; ++l) bits |= (m[l] != 0 ? 1u : 0u) << l;
+  return bits;
+#endif
+}
+
+// The largest of 0 and the lanes in `used` that are not NaN: what a scalar loop
+// `if (largest < x[l]) largest = x[l]` from 0 gives (a maximum is exact, so the order does not
+// matter).
+GRAINLAB_LANES_INLINE double largest_ordered(vd x, unsigned used) {
+#if defined(__AVX512F__)
+  const __mmask8 ordered = _mm512_cmp_pd_mask(x, x, _CMP_ORD_Q);
+  // (lanes left out count as 0; no NaN is left, so each step is an exact maximum)
+  vd v = _mm512_mask_blend_pd(static_cast<__mmask8>(ordered & used), splat(0.0), x);
+  vd w = __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3);
+  v = v > w ? v : w;
+  w = __builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5);
+  v = v > w ? v : w;
+  w = __builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6);
+  v = v > w ? v : w;
+  return v[0];
+#else
+  double largest = 0.0;
+  for (int l = 0; l < lanes; ++l)
+    if ((used >> l & 1u) && largest < x[l]) largest = x[l];
+  return largest;
+#endif
+}
+
 // A 3-vector per lane, with the operations of core/vec3.hpp in the same association order.
 struct V3 {
   vd x, y, z;
@@ -177,6 +211,34 @@ GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const ui
   value[1] = __builtin_shufflevector(d[1], d[3], 0, 1, 8, 9, 4, 5, 12, 13);
   value[3] = __builtin_shufflevector(d[1], d[3], 2, 3, 10, 11, 6, 7, 14, 15);
   return {value[0], {value[1], value[2], value[3]}};
+}
+
+// Stores lane l of v at base + 3 index[l] for the lanes in `store`.
+GRAINLAB_LANES_INLINE void store_lanes3(double* base, const uint32_t* index, const V3& v,
+                                        unsigned store) {
+#if defined(__AVX512F__)
+  // Two lanes' (x, y, z) per vector, in its two halves, each half stored under a 3-value mask
+  // (the second half from 4 values before the lane's place: the masked-off values are neither
+  // read nor written): 6 permutations and 8 masked stores in place of three 8-value scatters.
+  const __m512i low = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);  // x0 y0 x1 y1 x2 y2 x3 y3
+  const __m512i high = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
+  const __m512d xy[2] = {_mm512_permutex2var_pd(v.x, low, v.y),
+                         _mm512_permutex2var_pd(v.x, high, v.y)};
+#pragma GCC unroll 4
+  for (int k = 0; k < 4; ++k) {  // lanes 2k and 2k + 1
+    const int q = 4 * (k % 2);
+    const __m512i pick = _mm512_setr_epi64(q, q + 1, 8 + 2 * k, 0, q + 2, q + 3, 9 + 2 * k, 0);
+    const __m512d pair = _mm512_permutex2var_pd(xy[k / 2], pick, v.z);
+    const auto first = static_cast<__mmask8>(0x07u & (0u - (store >> (2 * k) & 1u)));
+    const auto second = static_cast<__mmask8>(0x70u & (0u - (store >> (2 * k + 1) & 1u)));
+    _mm512_mask_storeu_pd(base + size_t{index[2 * k]} * 3, first, pair);
+    const uintptr_t at = reinterpret_cast<uintptr_t>(base + size_t{index[2 * k + 1]} * 3) - 32;
+    _mm512_mask_storeu_pd(reinterpret_cast<double*>(at), second, pair);
+  }
+#else
+  for (int l = 0; l < lanes; ++l)
+    if (store >> l & 1u) store_lane3(base, index[l], v, l);
+#endif
 }
 
 GRAINLAB_LANES_INLINE void store_zero3(double* out) {

@@ -58,6 +58,7 @@ struct PileResult {
   long touching = 0;
   long rebuilds = 0;
   long handed_back = 0;  // entries the kernel handed to the scalar law (first touch in a step)
+  std::vector<double> largest_overlap;  // per step: the largest overlap / min(r_i, r_j)
 };
 
 // one_material: every bead of glass_a (the kernel then broadcasts the one pair's constants instead
@@ -94,6 +95,7 @@ PileResult run_pile(const char* kernel, int threads, long steps, bool one_materi
     sim.step();
     r.touching += sim.touching_pair_count();
     r.handed_back += sim.pairs_handed_to_scalar_law();
+    r.largest_overlap.push_back(sim.max_overlap_fraction());
   }
   r.rebuilds = sim.rebuild_count();
   r.particles = sim.particles();
@@ -114,6 +116,9 @@ void expect_identical(const PileResult& a, const PileResult& b) {
                            bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.force.data(), b.particles.force.data(), bytes));
   EXPECT_EQ(0, std::memcmp(a.particles.torque.data(), b.particles.torque.data(), bytes));
+  // the health check's largest overlap, step by step (the kernel takes it as a masked maximum
+  // across the lanes; the scalar loop one contact at a time)
+  EXPECT_EQ(a.largest_overlap, b.largest_overlap);
   // the contact histories and results of the last step, entry by entry
   ASSERT_EQ(a.springs.size(), b.springs.size());
   EXPECT_EQ(0, std::memcmp(a.springs.data(), b.springs.data(), a.springs.size() * sizeof(Vec3)));
