@@ -176,12 +176,10 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
 
   // Which lanes to store: the batch's contacts, less those handed back to the scalar law (as
   // mask bits, without a branch per lane).
-  const unsigned used = (1u << b.count) - 1u;
-  const unsigned handed_back = drifted ? lane_bits(begun) & used : 0u;
-  const unsigned store = used & ~handed_back;
+  const auto [store, handed_back] = choose_lanes(b.count, drifted, begun);
   for (unsigned h = handed_back; h != 0; h &= h - 1)
     deferred[deferred_count++] = b.e[__builtin_ctz(h)];
-  const double max_fraction = largest_ordered(fraction, used);
+  const double max_fraction = largest_ordered(fraction, (1u << b.count) - 1u);
   // The results, one vector per value, transposed to one 64-byte PairResult per lane and stored
   // whole (a line each, where a scatter per value would write 8 values across 8 lines).
   const vd value[lanes] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x,
@@ -354,9 +352,7 @@ unsigned wall_law(const SimdPairInput& in, const SimdWallInput& walls, SimdWallB
                                     load_lanes3(walls.sliding_spring, lane_index(b.entry)));
   const V3 torque = lever * law.arm;
 
-  const unsigned used = (1u << count) - 1u;
-  const unsigned handed_back = drifted ? lane_bits(begun) & used : 0u;
-  const unsigned store = used & ~handed_back;
+  const auto [store, handed_back] = choose_lanes(count, drifted, begun);
   store_lanes3(walls.force_on_particle, b.entry, law.force_on_a, store);
   store_lanes3(walls.torque_on_particle, b.entry, torque, store);
   store_lanes3(walls.sliding_spring, b.entry, law.spring, store);

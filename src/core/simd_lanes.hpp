@@ -48,6 +48,18 @@ GRAINLAB_LANES_INLINE unsigned lane_bits(vmask m) {
 #endif
 }
 
+// Of the first `count` lanes of a batch: those handed back to the scalar law (the contacts that
+// may have begun in this step, flagged by `begun`, when the positions have drifted) and those
+// whose results the lanes store (the rest).
+struct LaneChoice {
+  unsigned store, handed_back;
+};
+GRAINLAB_LANES_INLINE LaneChoice choose_lanes(int count, bool drifted, vmask begun) {
+  const unsigned used = (1u << count) - 1u;
+  const unsigned handed_back = drifted ? lane_bits(begun) & used : 0u;
+  return {used & ~handed_back, handed_back};
+}
+
 // The largest of 0 and the lanes in `used` that are not NaN: what a scalar loop
 // `if (largest < x[l]) largest = x[l]` from 0 gives (a maximum is exact, so the order does not
 // matter).
