@@ -164,6 +164,13 @@ void Simulation::index_entry_owners() {
   particle_records_.resize(particles_.size() * particle_record_size);
   entry_owners_ = row_of_each_entry(c.row_start);
   wall_entry_owners_ = row_of_each_entry(wall_contacts_.row_start);
+  // the rows prefetch where the partners lie far ahead (core/pair_kernel_simd.hpp)
+  using Prefetch = SimulationSettings::Prefetch;
+  prefetch_ahead_ =
+      settings_.prefetch == Prefetch::always ||
+      (settings_.prefetch == Prefetch::automatic &&
+       prefetch_pays(partner_reach(c.row_start.data(), c.partner.data(), particles_.size()),
+                     l2_cache_bytes()));
   const std::vector<int32_t>& material = particles_.material;
   one_material_ = !material.empty() && std::all_of(material.begin(), material.end(),
                                                    [&](int32_t m) { return m == material[0]; })
@@ -194,7 +201,8 @@ SimdPairInput Simulation::kernel_input(double drift) {
                        &c.sliding_spring[0].x,
                        &c.result[0].force_on_first.x,
                        settings_.time_step,
-                       drift};
+                       drift,
+                       prefetch_ahead_};
 }
 
 void Simulation::prepare_pair_forces() {

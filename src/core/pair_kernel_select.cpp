@@ -1,4 +1,7 @@
 // Run-time choice of the vectorised pair kernel (core/pair_kernel_simd.hpp).
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -30,6 +33,33 @@ SimdPairKernel select_simd_pair_kernel() {
     return {&simd_sse2::pair_rows, &simd_sse2::particle_records, &simd_sse2::wall_law, "sse2"};
   throw std::runtime_error("GRAINLAB_SIMD=" + wanted +
                            ": expected off, sse2, avx2, avx512 or auto (the default)");
+}
+
+bool prefetch_pays(double partner_reach, long l2_cache_bytes) {
+  constexpr double touched_bytes_per_bead = 1536.0;
+  return partner_reach * touched_bytes_per_bead > static_cast<double>(l2_cache_bytes);
+}
+
+double partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows) {
+  double sum = 0.0;
+  size_t counted = 0;
+  for (size_t i = 0; i < rows; ++i) {
+    if (row_start[i] == row_start[i + 1]) continue;
+    uint32_t farthest = 0;
+    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e)
+      farthest = std::max(farthest, partner[e]);
+    sum += farthest > i ? static_cast<double>(farthest - i) : 0.0;
+    ++counted;
+  }
+  return counted > 0 ? sum / static_cast<double>(counted) : 0.0;
+}
+
+long l2_cache_bytes() {
+  static const long bytes = [] {
+    const long reported = sysconf(_SC_LEVEL2_CACHE_SIZE);
+    return reported > 0 ? reported : 1L << 20;
+  }();
+  return bytes;
 }
 
 }  // namespace grainlab

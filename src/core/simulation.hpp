@@ -32,6 +32,10 @@ struct SimulationSettings {
   double list_skin_fraction = default_list_skin_fraction;
   double max_speed = 100.0;            // m/s; a faster particle means the run has blown up
   double max_overlap_fraction = 0.05;  // of the smaller radius
+  // Whether the vectorised distance pass prefetches the entries ahead: automatic where the
+  // partners lie far ahead in memory (prefetch_pays, core/pair_kernel_simd.hpp). Results do not
+  // depend on it.
+  enum class Prefetch { automatic, always, never } prefetch = Prefetch::automatic;
   // The config key that sets the time step, named in the advice of a BlowUpError.
   enum class StepKey { scene, lab_test } step_key = StepKey::scene;
 };
@@ -98,6 +102,8 @@ class Simulation {
   const PairContacts& pair_contacts() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   long rebuild_count() const { return neighbors_.rebuild_count(); }
+  // Whether the vectorised rows prefetch (SimulationSettings::prefetch), as last chosen.
+  bool rows_prefetch() const { return prefetch_ahead_; }
   // Selections of the active pair list: one per rebuild, and the refreshes between them.
   long list_refresh_count() const { return neighbors_.refresh_count(); }
 
@@ -172,7 +178,8 @@ class Simulation {
   std::vector<double> particle_records_;     // the kernel's per-particle velocity records
   std::vector<uint32_t> wall_entry_owners_;  // per wall entry: its particle (for the kernel)
   std::vector<SimdWallState> wall_lane_state_;  // per wall, for the kernel's wall lanes
-  int one_material_ = -1;  // the material of every particle, or -1 where they differ (kernel)
+  int one_material_ = -1;        // the material of every particle, or -1 where they differ (kernel)
+  bool prefetch_ahead_ = false;  // whether the kernel's rows prefetch (index_entry_owners)
   long pairs_handed_to_scalar_law_ = 0, walls_handed_to_scalar_law_ = 0;
   // Who takes which particles in compute_forces' three stages (records; pair rows and wall
   // contacts; gather and half kick): planned afresh at each call.

@@ -59,11 +59,14 @@ struct PileResult {
   long rebuilds = 0;
   long handed_back = 0;  // entries the kernel handed to the scalar law (first touch in a step)
   std::vector<double> largest_overlap;  // per step: the largest overlap / min(r_i, r_j)
+  bool prefetched = false;              // the kernel's rows prefetched (at the end)
 };
 
 // one_material: every bead of glass_a (the kernel then broadcasts the one pair's constants instead
 // of looking them up per lane); otherwise a third of them glass_b.
-PileResult run_pile(const char* kernel, int threads, long steps, bool one_material = false) {
+PileResult run_pile(
+    const char* kernel, int threads, long steps, bool one_material = false,
+    SimulationSettings::Prefetch prefetch = SimulationSettings::Prefetch::automatic) {
   KernelChoice choice(kernel);
   omp_set_num_threads(threads);
   // 10 x 10 x 10 beads of radius 0.995-1.005 mm on a 2 mm lattice, jittered by up to 5 um:
@@ -87,8 +90,9 @@ PileResult run_pile(const char* kernel, int threads, long steps, bool one_materi
                           plane_wall({l, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
                           plane_wall({0, l, 0}, {0, -1, 0}), plane_wall({0, 0, l}, {0, 0, -1})};
   for (Wall& w : walls) w.material = 2;
-  Simulation sim(std::move(p), walls, mixed_table(),
-                 settings_for(0.995e-3, 0.4, 0.1, {0, 0, -9.81}));
+  SimulationSettings settings = settings_for(0.995e-3, 0.4, 0.1, {0, 0, -9.81});
+  settings.prefetch = prefetch;
+  Simulation sim(std::move(p), walls, mixed_table(), settings);
   PileResult r;
   r.kernel = sim.pair_kernel_name();
   for (long s = 0; s < steps; ++s) {
@@ -98,6 +102,7 @@ PileResult run_pile(const char* kernel, int threads, long steps, bool one_materi
     r.largest_overlap.push_back(sim.max_overlap_fraction());
   }
   r.rebuilds = sim.rebuild_count();
+  r.prefetched = sim.rows_prefetch();
   r.particles = sim.particles();
   r.springs = sim.pair_contacts().sliding_spring;
   r.results = sim.pair_contacts().result;
@@ -186,6 +191,35 @@ TEST(PairKernelSimd, OneMaterialMatchesTheScalarLawOnEveryInstructionSet) {
   const PileResult mixed = run_pile("sse2", 1, pile_steps / 2);
   EXPECT_NE(0, std::memcmp(mixed.particles.position.data(), sse2.particles.position.data(),
                            sse2.particles.size() * sizeof(Vec3)));
+}
+
+TEST(PairKernelSimd, RowsThatPrefetchGiveTheSameBits) {
+  // The pile is small, so the rows prefetch only when told to; the results must not change.
+  using Prefetch = SimulationSettings::Prefetch;
+  const PileResult automatic = run_pile("auto", 2, pile_steps / 2);
+  const PileResult always = run_pile("auto", 2, pile_steps / 2, false, Prefetch::always);
+  const PileResult never = run_pile("auto", 2, pile_steps / 2, false, Prefetch::never);
+  EXPECT_NE(always.kernel, "scalar");
+  EXPECT_FALSE(automatic.prefetched) << "1,000 beads: their partners lie in the L2";
+  EXPECT_TRUE(always.prefetched);
+  EXPECT_FALSE(never.prefetched);
+  EXPECT_GE(always.rebuilds, 1);  // the choice is made again at every rebuild
+  expect_identical(never, always);
+  expect_identical(never, automatic);
+}
+
+TEST(PairKernelSimd, PrefetchWhereThePartnersLieBeyondTheL2) {
+  // rows 0: partners 3 and 5 (farthest 5 ahead); 1: none (left out); 2: partner 4 (2 ahead)
+  const std::vector<uint32_t> row_start{0, 2, 2, 3}, partner{3, 5, 4};
+  EXPECT_DOUBLE_EQ(partner_reach(row_start.data(), partner.data(), 3), 3.5);
+  const std::vector<uint32_t> empty_rows{0, 0, 0};
+  EXPECT_EQ(partner_reach(empty_rows.data(), nullptr, 2), 0.0);
+  // about 1.5 KiB a bead: on a 1 MiB L2 the switch lies at 683 beads, on 2 MiB at 1,365
+  EXPECT_FALSE(prefetch_pays(600.0, 1L << 20));
+  EXPECT_TRUE(prefetch_pays(800.0, 1L << 20));
+  EXPECT_FALSE(prefetch_pays(800.0, 2L << 20));
+  EXPECT_TRUE(prefetch_pays(1500.0, 2L << 20));
+  EXPECT_GT(l2_cache_bytes(), 0);
 }
 
 TEST(PairKernelSimd, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
