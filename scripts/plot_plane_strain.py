@@ -72,9 +72,15 @@ if band.get("found"):
     ax.set_xlim(extent[0], extent[1])
     ax.set_ylim(extent[2], extent[3])
     th_ = band["theories_deg"]
-    title = (f"band at {band['inclination_to_horizontal_deg']:.1f} deg, {band['thickness_in_diameters']:.1f} d thick\n"
-             f"Mohr-Coulomb {th_['mohr_coulomb_45_plus_phi_over_2']:.1f}, Roscoe {th_['roscoe_45_plus_psi_over_2']:.1f}, "
-             f"Arthur {th_['arthur_45_plus_phi_plus_psi_over_4']:.1f} deg")
+
+    def one(x):  # before the peak a theory has no angle yet (null in summary.json)
+        return "n/a" if x is None else f"{x:.1f}"
+
+    title = (f"band at {one(band['inclination_to_horizontal_deg'])} deg, "
+             f"{one(band['thickness_in_diameters'])} d thick\n"
+             f"Mohr-Coulomb {one(th_['mohr_coulomb_45_plus_phi_over_2'])}, "
+             f"Roscoe {one(th_['roscoe_45_plus_psi_over_2'])}, "
+             f"Arthur {one(th_['arthur_45_plus_phi_plus_psi_over_4'])} deg")
     ax.legend(fontsize=8, loc="lower right")
 ax.set_title(title, fontsize=9)
 ax.set_xlabel("x (width) [mm]")

@@ -878,5 +878,34 @@ def scale_study_bad_input():
             assert not os.path.exists(out), new
 
 
+def plane_strain_plot_before_the_peak():
+    # A run stopped before the peak has a band but no dilatancy angle yet: the Roscoe and Arthur
+    # inclinations are null in summary.json. The plot script must still draw both figures (it
+    # used to stop on formatting None, and the run warned "no curve.png / band.png").
+    columns = ["time_s", "axial_strain", "volumetric_strain", "axial_stress_platens_Pa",
+               "axial_stress_particles_Pa", "lateral_stress_membrane_Pa", "lateral_stress_particles_Pa",
+               "out_of_plane_stress_walls_Pa"]
+    with tempfile.TemporaryDirectory() as d:
+        with open(os.path.join(d, "curve.csv"), "w") as f:
+            f.write(",".join(columns) + "\n")
+            f.write("0.0015,0,0,150e3,148e3,150e3,150e3,150e3\n")
+            f.write("0.0019,0.0015,-2.8e-5,306e3,277e3,150e3,166e3,217e3\n")
+        with open(os.path.join(d, "band_map.csv"), "w") as f:
+            f.write("x_m,z_m,shear_strain\n")
+            for z in (0.001, 0.003):
+                for x in (0.001, 0.003):
+                    f.write(f"{x},{z},{0.01 if x == z else 0.002}\n")
+        band = {"found": True, "direction_deg": 87.0, "inclination_to_horizontal_deg": 87.0,
+                "map_low_m": [0.0, 0.0], "offset_m": 0.0, "thickness_in_diameters": 1.1,
+                "theories_deg": {"mohr_coulomb_45_plus_phi_over_2": 55.0,
+                                 "roscoe_45_plus_psi_over_2": None, "arthur_45_plus_phi_plus_psi_over_4": None}}
+        json.dump({"shear_band": band}, open(os.path.join(d, "summary.json"), "w"))
+        r = subprocess.run(["/usr/bin/python3", os.path.join(SRC, "scripts/plot_plane_strain.py"), d],
+                           capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stderr
+        for name in ("curve.png", "band.png"):
+            assert os.path.getsize(os.path.join(d, name)) > 0, name
+
+
 globals()[CHECK]()
 print("ok:", CHECK)
