@@ -200,10 +200,11 @@ TEST(PairKernelSimd, RowsThatPrefetchGiveTheSameBits) {
   const PileResult always = run_pile("auto", 2, pile_steps / 2, false, Prefetch::always);
   const PileResult never = run_pile("auto", 2, pile_steps / 2, false, Prefetch::never);
   EXPECT_NE(always.kernel, "scalar");
-  EXPECT_FALSE(automatic.prefetched) << "1,000 beads: their partners lie in the L2";
+  // 1,000 beads: a row's partners lie about 110 beads ahead, some 170 KB, inside any L2 of 256 KB
+  if (l2_cache_bytes() >= 256L << 10) EXPECT_FALSE(automatic.prefetched);
   EXPECT_TRUE(always.prefetched);
   EXPECT_FALSE(never.prefetched);
-  EXPECT_GE(always.rebuilds, 1);  // the choice is made again at every rebuild
+  EXPECT_GE(always.rebuilds, 1);  // the choice was made again at a rebuild, and held
   expect_identical(never, always);
   expect_identical(never, automatic);
 }
