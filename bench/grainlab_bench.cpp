@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   std::string lammps_data, tile, specimen_csv;
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false;
+  std::string one_sweep = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
                  "thread counts to run (default: 1, 2, 4, ... up to the processor count)")
@@ -141,7 +142,15 @@ int main(int argc, char** argv) {
   app.add_flag("--rebuild-peak", rebuild_peak,
                "after the timed steps, force one neighbour-list rebuild (one wall moved out by a "
                "skin) and print the peak RSS with it");
+  app.add_option("--one-sweep", one_sweep,
+                 "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
+                 "results)")
+      ->check(CLI::IsMember({"automatic", "always", "never"}));
   CLI11_PARSE(app, argc, argv);
+  const Simulation::OneSweep sweep_choice = one_sweep == "always" ? Simulation::OneSweep::always
+                                            : one_sweep == "never"
+                                                ? Simulation::OneSweep::never
+                                                : Simulation::OneSweep::automatic;
 
   Packing packing;
   try {
@@ -187,15 +196,16 @@ int main(int argc, char** argv) {
   const std::string csv_label = label.empty() ? kernel : label + " " + kernel;
   fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}  pair kernel {}\n", name, n,
              steps, warmup, grainlab::version_string, kernel);
-  fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8}\n", "threads", "rep",
-             "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash",
-             "entries");
+  fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8} {:>7}\n", "threads",
+             "rep", "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash",
+             "entries", "sweeps");
   for (int t : threads) {
     omp_set_num_threads(t);
     for (int r = 0; r < reps; ++r) {
       Simulation sim = make_simulation(packing, gravity);
+      sim.set_one_sweep(sweep_choice);
       sim.advance(warmup);
-      const long rebuilds0 = sim.rebuild_count();
+      const long rebuilds0 = sim.rebuild_count(), sweeps0 = sim.one_sweep_steps();
       const auto start = std::chrono::steady_clock::now();
       sim.advance(steps);
       const double seconds =
@@ -208,9 +218,12 @@ int main(int argc, char** argv) {
       const uint64_t hash = state_hash(sim.particles());
       // entries: half-list entries (pairs within the skin) per particle
       const double entries = static_cast<double>(sim.pair_contacts().size()) / n;
+      // sweeps: the share of the timed steps run as one sweep (core/one_sweep.cpp)
+      const double sweeps = static_cast<double>(sim.one_sweep_steps() - sweeps0) / steps;
       fmt::print(
-          "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f}\n",
-          t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries);
+          "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f} "
+          "{:>7.3f}\n",
+          t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps);
       if (rebuild_peak) {
         // The timed run rebuilds rarely or never; a real run rebuilds every few hundred steps,
         // and the rebuild holds the old contact store while it builds the new one. Moving one

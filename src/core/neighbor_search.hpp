@@ -66,8 +66,14 @@ class NeighborSearch {
   // Whether particle i at x has moved more than half the list skin since the active list was
   // selected (then refresh it).
   bool moved_beyond_half_list_skin(size_t i, const Vec3& x) const {
-    return norm2(x - position_at_refresh_[i]) > 0.25 * list_skin_ * list_skin_;
+    return list_displacement2(i, x) > half_list_skin2();
   }
+  // The parts of that test: the square of particle i's displacement since the selection (m^2),
+  // and the square of half the list skin.
+  double list_displacement2(size_t i, const Vec3& x) const {
+    return norm2(x - position_at_refresh_[i]);
+  }
+  double half_list_skin2() const { return 0.25 * list_skin_ * list_skin_; }
   // Whether a step must test moved_beyond_half_skin at all: false while every particle, at the
   // last selection, was so close to where the list was built that moving another half list skin
   // cannot take it beyond half the skin. Then only a step that refreshes needs the test

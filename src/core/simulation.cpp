@@ -37,26 +37,32 @@ void Simulation::refresh_active_pairs() {
 
 void Simulation::step() {
   for (StepListener* l : listeners_) l->before_step(*this);
-  // The drift writes the kernel's velocity records on its way; a rebuild reorders the particles,
-  // and then the force region writes them again.
-  bool records_written = false;
-  ListUpdate update = kick_and_drift(records_written);
-  // A particle that moved half the list skin may also have moved half the skin this very step
-  // (kick_and_drift tests that only where it could happen before a refresh): decide as every
-  // step would have.
-  if (update == ListUpdate::refresh && neighbors_.needs_rebuild(particles_, walls_))
-    update = ListUpdate::rebuild;
-  if (update == ListUpdate::rebuild) {
-    rebuild_neighbors();
-    records_written = false;
-    for (StepListener* l : listeners_) l->after_rebuild(*this);
-  } else if (update == ListUpdate::refresh) {
-    // The particles keep their order; the records are written again only because whether the
-    // kernel runs depends on the list not being empty.
-    refresh_active_pairs();
-    records_written = false;
+  drift_walls();
+  if (one_sweep_possible()) {
+    sweep_step();
+  } else {
+    // In stages. The drift writes the kernel's velocity records on its way; a rebuild reorders
+    // the particles, and then the force region writes them again.
+    bool records_written = false;
+    ListUpdate update = kick_and_drift(records_written);
+    // A particle that moved half the list skin may also have moved half the skin this very step
+    // (kick_and_drift tests that only where it could happen before a refresh): decide as every
+    // step would have.
+    if (update == ListUpdate::refresh && neighbors_.needs_rebuild(particles_, walls_))
+      update = ListUpdate::rebuild;
+    if (update == ListUpdate::rebuild) {
+      rebuild_neighbors();
+      records_written = false;
+      for (StepListener* l : listeners_) l->after_rebuild(*this);
+    } else if (update == ListUpdate::refresh) {
+      // The particles keep their order; the records are written again only because whether the
+      // kernel runs depends on the list not being empty.
+      refresh_active_pairs();
+      records_written = false;
+    }
+    if (update != ListUpdate::none) list_displacement2_ = 0.0;  // selected where they are now
+    compute_forces(settings_.time_step, true, records_written);
   }
-  compute_forces(settings_.time_step, true, records_written);
   partition_.update();
   time_ += settings_.time_step;
   ++step_count_;
@@ -67,18 +73,47 @@ void Simulation::step() {
 void Simulation::scale_positions(const Vec3& centre, double factor) {
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (long i = 0; i < n; ++i) p.position[i] = centre + factor * (p.position[i] - centre);
+  // Where steps may run as one sweep, the largest move widens the bound of one_sweep_possible
+  // (the distance from the list's selection grows by at most the move).
+  const bool bound = one_sweep_wanted_;
+  double moved2 = 0.0, scale2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max \
+                                                    : moved2, scale2) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    const Vec3 x = centre + factor * (p.position[i] - centre);
+    if (bound) {
+      moved2 = std::max(moved2, norm2(x - p.position[i]));
+      scale2 = std::max(scale2, norm2(x));
+    }
+    p.position[i] = x;
+  }
+  if (bound) {
+    const double reach = std::sqrt(list_displacement2_) + std::sqrt(moved2);
+    list_displacement2_ = reach * reach;
+    position_scale2_ = std::max(position_scale2_, scale2);
+  } else {
+    list_displacement2_ = position_scale2_ = INFINITY;
+  }
 }
 
-// First half of velocity Verlet: v(t + dt/2) = v(t) + dt/2 F/m, then x(t + dt) = x + dt v.
-// Returns what the neighbour lists need: the checks of each particle's displacement since the
-// last selection of the active list (and, where it could matter before the next one, since the
-// last rebuild) are made in the same loop (one parallel region, not two). When the vectorised
-// kernel runs, the same pass writes its velocity records (particle_records: the half-step
-// velocities just made and the end-of-step estimates from the forces held), tile by tile while
-// the tile's velocities and forces are still in the caches, and sets records_written; the force
-// region then skips its own records stage.
+// The walls' first half kick and drift (a wall with mass: v += dt/2 F/M), before the particles':
+// the particles' drift does not read the walls.
+void Simulation::drift_walls() {
+  const double dt = settings_.time_step, half = 0.5 * dt;
+  for (Wall& w : walls_) {
+    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
+    w.point += dt * w.velocity;
+  }
+}
+
+// First half of velocity Verlet for the particles: v(t + dt/2) = v(t) + dt/2 F/m, then
+// x(t + dt) = x + dt v (the walls have moved already). Returns what the neighbour lists need: the
+// checks of each particle's displacement since the last selection of the active list (and, where it
+// could matter before the next one, since the last rebuild) are made in the same loop (one parallel
+// region, not two). When the vectorised kernel runs, the same pass writes its velocity records
+// (particle_records: the half-step velocities just made and the end-of-step estimates from the
+// forces held), tile by tile while the tile's velocities and forces are still in the caches, and
+// sets records_written; the force region then skips its own records stage.
 Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
@@ -90,9 +125,16 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   const bool check_rebuild = check_particles && neighbors_.rebuild_possible_before_refresh();
   records_written = uses_pair_kernel();
   constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
+  const double half_list_skin2 = neighbors_.half_list_skin2();
+  // (the bound of one_sweep_possible, where the next step may run as one sweep)
+  const bool bound = check_particles && one_sweep_wanted_;
   int moved = 0, stale = 0;
+  double displacement2 = 0.0, scale2 = 0.0;
   partition_.plan(n, step_team(n));
-#pragma omp parallel reduction(| : moved, stale) if (n > parallel_threshold)
+#pragma omp parallel reduction(|               \
+                               : moved, stale) \
+    reduction(max                              \
+              : displacement2, scale2) if (n > parallel_threshold)
   {
     const IndexBlock block = partition_.thread_block_of(n);
     const double start = omp_get_wtime();
@@ -104,7 +146,12 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
         p.position[i] += dt * p.velocity[i];
         p.rotation[i] += dt * p.angular_velocity[i];
         if (check_particles) {
-          stale |= neighbors_.moved_beyond_half_list_skin(i, p.position[i]) ? 1 : 0;
+          const double d2 = neighbors_.list_displacement2(i, p.position[i]);
+          stale |= d2 > half_list_skin2 ? 1 : 0;  // moved_beyond_half_list_skin
+          if (bound) {
+            displacement2 = std::max(displacement2, d2);
+            scale2 = std::max(scale2, norm2(p.position[i]));
+          }
           if (check_rebuild) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
         }
       }
@@ -112,27 +159,34 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
     }
     partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
   }
-  for (Wall& w : walls_) {
-    if (w.mass > 0.0) w.velocity += (half / w.mass) * (w.force + w.external_force);
-    w.point += dt * w.velocity;
-  }
+  list_displacement2_ = bound ? displacement2 : INFINITY;
+  position_scale2_ = bound ? scale2 : INFINITY;
   if (moved != 0 || !neighbors_.walls_and_count_allow(p.size(), walls_)) return ListUpdate::rebuild;
   return stale != 0 ? ListUpdate::refresh : ListUpdate::none;
 }
 
 // Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:
 // v(t + dt) = v(t + dt/2) + dt/2 F/m. Returns the largest speed squared (NaN as infinite).
-double Simulation::half_kick_particles(IndexBlock b) {
+double Simulation::half_kick_particles(IndexBlock b, double* next_speed2) {
   const double half = 0.5 * settings_.time_step;
   ParticleStore& p = particles_;
-  double max_speed2 = 0.0;
+  const bool bound = next_speed2 != nullptr;
+  double max_speed2 = 0.0, max_next2 = 0.0;
   for (long i = b.first; i < b.end; ++i) {
-    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    const Vec3 kick = (half * p.inverse_mass[i]) * p.force[i];
+    p.velocity[i] += kick;
     p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
     const double v2 = norm2(p.velocity[i]);
     // NaN compares false: a NaN speed is recorded as infinite.
     max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
+    if (bound) {
+      // the velocity the next step's drift will move the particle at, as it will form it
+      // (unless a command changes the velocity first)
+      const double next2 = norm2(p.velocity[i] + kick);
+      max_next2 = std::max(max_next2, next2 == next2 ? next2 : INFINITY);
+    }
   }
+  if (bound) *next_speed2 = std::max(*next_speed2, max_next2);
   return max_speed2;
 }
 
@@ -178,14 +232,15 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   if (records) record_chunks_.plan(partition_, chunk);
   contact_chunks_.plan(partition_, chunk);
   particle_chunks_.plan(partition_, chunk);
-  double max_fraction = 0.0, max_speed2 = 0.0;
+  double max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
+  const bool next_bound = close_step && one_sweep_wanted_;  // (for one_sweep_possible)
   // One region, up to three stages, a barrier after each but the last: the pair rows and wall
   // contacts read every particle's record, the gather reads every entry's result. The records
   // stage runs only where kick_and_drift has not written them (after a rebuild, on a fresh
   // state): within a run of steps the region has two stages and one barrier. Each stage shares
   // its chunks (core/chunk_queue.hpp).
-#pragma omp parallel reduction(max : max_fraction, max_speed2) \
+#pragma omp parallel reduction(max : max_fraction, max_speed2, next_speed2) \
     reduction(+ : handed_back, walls_handed_back) if (parallel)
   {
     if (records) {
@@ -201,7 +256,9 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
 #pragma omp barrier
     const ChunkQueue::OwnWork gathered = particle_chunks_.drain([&](long first, long end) {
       gather_particles({first, end});
-      if (close_step) max_speed2 = std::max(max_speed2, half_kick_particles({first, end}));
+      if (close_step)
+        max_speed2 = std::max(
+            max_speed2, half_kick_particles({first, end}, next_bound ? &next_speed2 : nullptr));
     });
     partition_.record(omp_get_thread_num(), contacts.count + gathered.count,
                       contacts.seconds + gathered.seconds);
@@ -210,6 +267,7 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   pairs_handed_to_scalar_law_ = handed_back;
   walls_handed_to_scalar_law_ = walls_handed_back;
   gather_walls();
+  next_speed2_ = next_bound ? next_speed2 : INFINITY;
   if (close_step) {
     max_speed2_ = max_speed2;
     half_kick_walls();

@@ -5,6 +5,7 @@
 // The core knows nothing of laboratory tests; controllers change wall velocities between steps.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -76,6 +77,7 @@ class Simulation {
   }
   void set_particle_velocity(size_t particle, const Vec3& velocity) {
     particles_.velocity[particle] = velocity;
+    next_speed2_ = INFINITY;  // the next drift's bound (one_sweep_possible) is not known
   }
   // The per-particle external force source (a membrane): kept until changed or cleared.
   void set_external_force(size_t particle, const Vec3& force) {
@@ -85,7 +87,8 @@ class Simulation {
   void clear_external_forces();
   // Moves every particle centre toward `centre` to centre + factor (x - centre): a homogeneous,
   // isotropic strain increment 1 - factor (the affine compaction of a specimen). Velocities are
-  // kept; the neighbour list sees the move as displacement.
+  // kept; the neighbour list sees the move as displacement (and so does the bound of a step as
+  // one sweep).
   void scale_positions(const Vec3& centre, double factor);
   // Replaces the material-pair constants (e.g. the friction while compacting); the table must
   // have the same materials and the same optional pieces of the contact law as the one given at
@@ -106,6 +109,15 @@ class Simulation {
   bool rows_prefetch() const { return prefetch_ahead_; }
   // Selections of the active pair list: one per rebuild, and the refreshes between them.
   long list_refresh_count() const { return neighbors_.refresh_count(); }
+  // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where the packing's
+  // partners lie beyond the L2 (the rule of the rows' prefetch, prefetch_pays), always where it
+  // can, or never (in stages). The results are the same. Not saved with the state.
+  enum class OneSweep { automatic, always, never };
+  void set_one_sweep(OneSweep choice) {
+    one_sweep_choice_ = choice;
+    choose_one_sweep();
+  }
+  long one_sweep_steps() const { return one_sweep_steps_; }  // steps run as one sweep
 
   double kinetic_energy() const;     // translational + rotational, J
   long touching_pair_count() const;  // particle-particle contacts with F_n > 0
@@ -123,7 +135,19 @@ class Simulation {
   // or a rebuild. records_written: whether it wrote the kernel's velocity records for the force
   // evaluation that follows.
   enum class ListUpdate { none, refresh, rebuild };
+  void drift_walls();  // the walls' half kick and drift (before the particles')
   ListUpdate kick_and_drift(bool& records_written);
+  // The step as one sweep over the particles (core/one_sweep.cpp): where no particle can move
+  // half the list skin in this step (from list_displacement2_ and next_speed2_), no list update
+  // can follow the drift, so each particle's drift, forces, gather and half kick run together,
+  // while its data is in the caches.
+  bool one_sweep_possible();
+  void choose_one_sweep();  // one_sweep_wanted_ from the choice and the list (index_entry_owners)
+  void sweep_step();
+  // The gather and half kick of the particles of [first, end) that are (late) or are not
+  // (!late) second in an entry whose first particle lies before `block_first`.
+  void close_particles(long first, long end, long block_first, bool late, double& max_speed2,
+                       double& next_speed2);
   // drift: how long the positions moved since the last force evaluation (dt within step(); 0 for
   // the first evaluation of a fresh state, when no contact spring may advance). close_step: end
   // with the second half kick. records_written: the kernel's velocity records are those of the
@@ -143,7 +167,9 @@ class Simulation {
   double compute_wall_forces(double drift, IndexBlock block, long& handed_back);
   void gather_particles(IndexBlock block);
   void gather_walls();
-  double half_kick_particles(IndexBlock block);
+  // Returns the largest speed squared; with next_speed2, raises it to the largest speed squared
+  // that the next step's first half kick will give (with the forces just summed).
+  double half_kick_particles(IndexBlock block, double* next_speed2);
   void half_kick_walls();
   void rebuild_neighbors();
   void refresh_active_pairs();
@@ -169,6 +195,18 @@ class Simulation {
   double max_overlap_fraction_ = 0.0;
   double max_speed2_ = 0.0;
   bool external_forces_ = false;  // some particle has a non-zero external force
+  // For one_sweep_possible: the largest displacement since the active list's selection, squared
+  // (m^2, after the last drift; 0 after a refresh), the largest squared distance of a particle
+  // from the origin then (m^2, for the rounding of positions), and the largest squared speed the
+  // next drift will move a particle at (m^2/s^2, from the last half kick). Infinite: not known.
+  double list_displacement2_ = INFINITY, position_scale2_ = INFINITY, next_speed2_ = INFINITY;
+  OneSweep one_sweep_choice_ = OneSweep::automatic;
+  bool one_sweep_wanted_ = false;  // the choice for this list: the drift and kick form the bound
+  double partner_reach_ = 0.0;     // partner_reach of the list (index_entry_owners)
+  long one_sweep_steps_ = 0;
+  // The largest partner index minus first index over the pair entries (index_entry_owners): how
+  // far ahead of a row its partners' records must have been written.
+  long max_partner_ahead_ = 0;
   // The vectorised pair loop for the reference law (no rolling, twisting or rolling-force piece),
   // the first particle of each entry, and room for the entries the kernel hands back (first
   // touch in the step), one slot per entry.

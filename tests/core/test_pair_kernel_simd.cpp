@@ -18,6 +18,7 @@
 
 #include "core/pair_kernel_simd.hpp"
 #include "core/random_insertion.hpp"
+#include "support/same_bits.hpp"
 #include "support/scenes.hpp"
 
 using namespace grainlab;
@@ -77,18 +78,14 @@ PileResult run_pile(
   constexpr int side = 10;
   constexpr double spacing = 2.0e-3;
   for (int k = 0; k < side * side * side; ++k) {
-    const Vec3 centre{spacing * (k % side + 0.5) + jitter(5e-6),
-                      spacing * (k / side % side + 0.5) + jitter(5e-6),
-                      spacing * (k / (side * side) + 0.5) + jitter(5e-6)};
+    const Vec3 centre = cubic_lattice_site(k, side, spacing, [&] { return jitter(5e-6); });
     const bool b = !one_material && (k * 7919) % 3 == 0;
     p.add(static_cast<uint32_t>(k), b ? 1 : 0, 1.0e-3 + jitter(5e-6),
           b ? 1.5 * glass_density : glass_density, centre, {jitter(0.2), jitter(0.2), jitter(0.2)},
           {jitter(300.0), jitter(300.0), jitter(300.0)}, false);
   }
   const double l = side * spacing;
-  std::vector<Wall> walls{plane_wall({0, 0, 0}, {0, 0, 1}),  plane_wall({0, 0, 0}, {1, 0, 0}),
-                          plane_wall({l, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
-                          plane_wall({0, l, 0}, {0, -1, 0}), plane_wall({0, 0, l}, {0, 0, -1})};
+  std::vector<Wall> walls = cube_walls(l);
   for (Wall& w : walls) w.material = 2;
   SimulationSettings settings = settings_for(0.995e-3, 0.4, 0.1, {0, 0, -9.81});
   settings.prefetch = prefetch;
@@ -112,15 +109,7 @@ PileResult run_pile(
 
 void expect_identical(const PileResult& a, const PileResult& b) {
   SCOPED_TRACE(a.kernel + " against " + b.kernel);
-  ASSERT_EQ(a.particles.size(), b.particles.size());
-  EXPECT_EQ(a.particles.id, b.particles.id);
-  const size_t bytes = a.particles.size() * sizeof(Vec3);
-  EXPECT_EQ(0, std::memcmp(a.particles.position.data(), b.particles.position.data(), bytes));
-  EXPECT_EQ(0, std::memcmp(a.particles.velocity.data(), b.particles.velocity.data(), bytes));
-  EXPECT_EQ(0, std::memcmp(a.particles.angular_velocity.data(), b.particles.angular_velocity.data(),
-                           bytes));
-  EXPECT_EQ(0, std::memcmp(a.particles.force.data(), b.particles.force.data(), bytes));
-  EXPECT_EQ(0, std::memcmp(a.particles.torque.data(), b.particles.torque.data(), bytes));
+  expect_same_particle_bits(a.particles, b.particles);
   // the health check's largest overlap, step by step (the kernel takes it as a masked maximum
   // across the lanes; the scalar loop one contact at a time)
   EXPECT_EQ(a.largest_overlap, b.largest_overlap);

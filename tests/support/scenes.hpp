@@ -41,6 +41,22 @@ inline Wall plane_wall(const Vec3& point, const Vec3& normal) {
   return w;
 }
 
+// Site k of a cubic lattice `side` sites wide and `spacing` apart (x fastest, then y, then z),
+// each coordinate moved by jitter() (called for x, y, z in that order).
+template <class Jitter>
+Vec3 cubic_lattice_site(int k, int side, double spacing, Jitter&& jitter) {
+  return {spacing * (k % side + 0.5) + jitter(), spacing * (k / side % side + 0.5) + jitter(),
+          spacing * (k / (side * side) + 0.5) + jitter()};
+}
+
+// The six plane walls of the box [0, l]^3, their normals inwards: floor, x = 0, x = l, y = 0,
+// y = l, lid (last).
+inline std::vector<Wall> cube_walls(double l) {
+  return {plane_wall({0, 0, 0}, {0, 0, 1}),  plane_wall({0, 0, 0}, {1, 0, 0}),
+          plane_wall({l, 0, 0}, {-1, 0, 0}), plane_wall({0, 0, 0}, {0, 1, 0}),
+          plane_wall({0, l, 0}, {0, -1, 0}), plane_wall({0, 0, l}, {0, 0, -1})};
+}
+
 inline SimulationSettings settings_for(double min_radius, double restitution, double dt_fraction,
                                        Vec3 gravity = {}) {
   SimulationSettings s;

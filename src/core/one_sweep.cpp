@@ -1,0 +1,170 @@
+// A step as one sweep over the particles (docs/performance.md sec. 27). In stages, a step makes
+// three passes over every particle and every pair entry: the drift (and the kernel's velocity
+// records), the forces (pair rows and wall contacts), the gather with the closing half kick.
+// Each pass streams the whole packing through the caches, so in a large one every pass reads
+// from memory what the pass before wrote (the lab's 88,400-bead specimen touches about 1.5 KiB
+// per bead and step). In one sweep each particle is drifted, its row computed and its sums
+// gathered within a few hundred particles of each other:
+//
+//   - the rows of particles [first, end) read the records and positions of their partners,
+//     which lie after them, at most max_partner_ahead_ further on (the neighbour list's cell
+//     order): the drift runs that far ahead of the rows;
+//   - a particle's sums need its own row and the entries where it is second, whose rows come
+//     before it: it is gathered and kicked right after its own row.
+//
+// The results are those of the stages bit for bit: every particle and every contact is the same
+// arithmetic on the same values, only earlier or later in the step.
+//
+// What makes it possible: the stages decide after the drift whether the neighbour lists need a
+// new selection or a rebuild, before any force is computed. The sweep computes forces before the
+// last particle has moved, so it runs only where no update can follow the drift: the list was not
+// built with a rebuild in view before the next selection (rebuild_possible_before_refresh), no
+// wall has moved half a skin, and no particle can move half the list skin. The last is a bound:
+// the largest displacement since the selection (after the last drift) plus dt times the largest
+// speed the drift will give (formed by the last half kick as the drift will form it). A command
+// between steps that moves particles or sets a velocity forgets the bound. In a dense packing the
+// bound holds in all but about the last step before each selection.
+//
+// Threads: each takes its block of the partition (core/thread_partition.hpp) and sweeps it.
+//   1. It drifts the head of its block, the particles the rows of the blocks before it may reach
+//      (max_partner_ahead_), and waits for the others.
+//   2. It sweeps its block. A particle that is second in an entry of an earlier block is "late":
+//      its sums are not complete until the other thread's rows are, and that thread's scalar law
+//      may read its velocity and force until then; it is left for stage 3. Late particles lie in
+//      the head.
+//   3. After a second barrier, it gathers and kicks its late particles.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/simulation.hpp"
+
+namespace grainlab {
+
+void Simulation::choose_one_sweep() {
+  one_sweep_wanted_ =
+      uses_pair_kernel() && !entry_owners_.empty() &&
+      (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic &&
+                                                 prefetch_pays(partner_reach_, l2_cache_bytes())));
+  if (!one_sweep_wanted_) list_displacement2_ = position_scale2_ = next_speed2_ = INFINITY;
+}
+
+bool Simulation::one_sweep_possible() {
+  if (!one_sweep_wanted_) return false;
+  const size_t n = particles_.size();
+  if (!neighbors_.built_for(n) || neighbors_.rebuild_possible_before_refresh() ||
+      !neighbors_.walls_and_count_allow(n, walls_))
+    return false;
+  // The farthest any particle can be from its place at the selection after this step's drift:
+  // its distance before it plus dt times its speed, each widened for the rounding of the
+  // computed squares (relative 1e-9) and of the positions themselves (a few units in the last
+  // place of the largest coordinate).
+  const double reach = (1.0 + 1e-9) * (std::sqrt(list_displacement2_) +
+                                       settings_.time_step * std::sqrt(next_speed2_)) +
+                       1e-15 * std::sqrt(position_scale2_);
+  return reach * reach < neighbors_.half_list_skin2();  // false where a bound is infinite or NaN
+}
+
+void Simulation::close_particles(long first, long end, long block_first, bool late,
+                                 double& max_speed2, double& next_speed2) {
+  const PairContacts& c = pairs_;
+  // second in an entry whose first particle lies before the block (col_pair is in entry order,
+  // so its first entry has the lowest first particle)
+  const auto is_late = [&](long i) {
+    return c.col_start[i] < c.col_start[i + 1] &&
+           entry_owners_[c.col_pair[c.col_start[i]]] < static_cast<uint32_t>(block_first);
+  };
+  for (long i = first; i < end;) {
+    const bool this_late = block_first > 0 && is_late(i);
+    long j = i + 1;
+    while (j < end && (block_first > 0 && is_late(j)) == this_late) ++j;
+    if (this_late == late) {
+      gather_particles({i, j});
+      max_speed2 = std::max(max_speed2, half_kick_particles({i, j}, &next_speed2));
+    }
+    i = j;
+  }
+}
+
+void Simulation::sweep_step() {
+  const double dt = settings_.time_step, half = 0.5 * dt;
+  ParticleStore& p = particles_;
+  const long n = static_cast<long>(p.size());
+  const long ahead = max_partner_ahead_;
+  const double half_list_skin2 = neighbors_.half_list_skin2();
+  constexpr long drift_tile = 256;   // particles per call to the records (as kick_and_drift)
+  constexpr long force_tile = 1024;  // particles per call to the rows, walls and gather
+  prepare_pair_forces();
+  prepare_wall_lanes();
+  const int team = step_team(n);
+  partition_.plan(n, team);
+  int stale = 0;
+  double displacement2 = 0.0, scale2 = 0.0, max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
+  long handed_back = 0, walls_handed_back = 0;
+#pragma omp parallel reduction(| : stale) \
+    reduction(max : displacement2, scale2, max_fraction, max_speed2, next_speed2) \
+    reduction(+ : handed_back, walls_handed_back) if (team > 1)
+  {
+    const IndexBlock block = partition_.thread_block_of(n);
+    double busy = 0.0, since = omp_get_wtime();  // time on the block, the barriers left out
+    const auto wait_for_the_others = [&] {
+      busy += omp_get_wtime() - since;
+#pragma omp barrier
+      since = omp_get_wtime();
+    };
+    // The first half kick and the drift of the particles up to `target` (kick_and_drift's
+    // arithmetic and its list test), with their records.
+    long drifted = block.first;
+    const auto drift_to = [&](long target) {
+      while (drifted < target) {
+        const long end = std::min(target, drifted + drift_tile);
+        for (long i = drifted; i < end; ++i) {
+          p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+          p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+          p.position[i] += dt * p.velocity[i];
+          p.rotation[i] += dt * p.angular_velocity[i];
+          const double d2 = neighbors_.list_displacement2(i, p.position[i]);
+          stale |= d2 > half_list_skin2 ? 1 : 0;
+          displacement2 = std::max(displacement2, d2);
+          scale2 = std::max(scale2, norm2(p.position[i]));
+        }
+        write_particle_records(dt, {drifted, end});
+        drifted = end;
+      }
+    };
+    // 1. the head, which the rows of the blocks before this one may reach
+    drift_to(std::min(block.end, block.first + ahead));
+    wait_for_the_others();
+    // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
+    // half kick right after its row
+    for (long first = block.first; first < block.end; first += force_tile) {
+      const long end = std::min(block.end, first + force_tile);
+      drift_to(std::min(block.end, end + ahead));
+      max_fraction = std::max({max_fraction, compute_pair_forces(dt, {first, end}, handed_back),
+                               compute_wall_forces(dt, {first, end}, walls_handed_back)});
+      close_particles(first, end, block.first, false, max_speed2, next_speed2);
+    }
+    wait_for_the_others();
+    // 3. the late particles, now that every row is done
+    close_particles(block.first, std::min(block.end, block.first + ahead), block.first, true,
+                    max_speed2, next_speed2);
+    busy += omp_get_wtime() - since;
+    partition_.record(omp_get_thread_num(), block.end - block.first, busy);
+  }
+  if (stale != 0)  // one_sweep_possible's bound excludes it: a bug, not a physical state
+    throw std::logic_error("a particle moved half the list skin in a step run as one sweep");
+  list_displacement2_ = displacement2;
+  position_scale2_ = scale2;
+  max_overlap_fraction_ = max_fraction;
+  pairs_handed_to_scalar_law_ = handed_back;
+  walls_handed_to_scalar_law_ = walls_handed_back;
+  gather_walls();
+  max_speed2_ = max_speed2;
+  next_speed2_ = next_speed2;
+  half_kick_walls();
+  ++one_sweep_steps_;
+}
+
+}  // namespace grainlab

@@ -1,0 +1,168 @@
+// A step as one sweep over the particles (core/one_sweep.cpp) against the same step in stages,
+// its reference: the same packing run with every possible step as a sweep and with none must end
+// in bit-identical states, on 1, 2 and 3 threads. The packing: 12 x 12 x 12 beads of two sizes
+// with random velocities and spins, under gravity, in a box whose lid has mass and is pushed down
+// by a force, compacted affinely for a while (Simulation::scale_positions, as the plane strain
+// preparation does) and lifted by a skin halfway, so that the list is selected again and rebuilt
+// during the run (the steps around those run in stages: a sweep next to a list update would throw
+// std::logic_error), beads touch the walls, and contacts begin inside steps (handed to the scalar
+// law).
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "core/random_insertion.hpp"
+#include "core/simulation.hpp"
+#include "support/same_bits.hpp"
+#include "support/scenes.hpp"
+
+using namespace grainlab;
+using namespace grainlab::test;
+
+namespace {
+
+struct SweepRun {
+  ParticleStore particles;
+  std::vector<Wall> walls;
+  std::vector<Vec3> springs;
+  std::vector<double> largest_overlap;  // per step
+  long steps = 0, sweeps = 0, refreshes = 0, rebuilds = 0, handed_back = 0, touching = 0;
+  std::string kernel;
+};
+
+Simulation make_packing() {
+  std::mt19937_64 rng(41);
+  auto jitter = [&](double half_width) { return half_width * (2.0 * uniform01(rng) - 1.0); };
+  ParticleStore p;
+  constexpr int side = 12;
+  constexpr double spacing = 2.0e-3;
+  for (int k = 0; k < side * side * side; ++k) {
+    const Vec3 centre = cubic_lattice_site(k, side, spacing, [&] { return jitter(5e-6); });
+    const double radius = (k * 7919) % 3 == 0 ? 0.995e-3 : 1.0e-3;
+    p.add(static_cast<uint32_t>(k), 0, radius + jitter(5e-6), glass_density, centre,
+          {jitter(0.2), jitter(0.2), jitter(0.2)}, {jitter(300.0), jitter(300.0), jitter(300.0)},
+          false);
+  }
+  const double l = side * spacing;
+  std::vector<Wall> walls = cube_walls(l);
+  Wall& lid = walls.back();
+  lid.mass = 0.01;                   // kg
+  lid.external_force = {0, 0, -20};  // N: about 50 kPa on the top layer
+  return Simulation(std::move(p), walls, two_material_table(0.6, 0.3),
+                    settings_for(0.98e-3, 0.6, 0.1, {0, 0, -9.81}));
+}
+
+SweepRun run(Simulation::OneSweep choice, int threads, long steps) {
+  omp_set_num_threads(threads);
+  Simulation sim = make_packing();
+  sim.set_one_sweep(choice);
+  SweepRun r;
+  r.kernel = sim.pair_kernel_name();
+  const long refreshes = sim.list_refresh_count(), rebuilds = sim.rebuild_count();
+  for (long s = 0; s < steps; ++s) {
+    // for 40 steps, an affine compaction of 5e-5 per step (moves of up to 1 um a step, more
+    // than the beads' own, widen the sweep's bound); halfway, the lid lifted by a skin: the
+    // walls force a rebuild
+    if (s >= steps / 4 && s < steps / 4 + 40)
+      sim.scale_positions({12e-3, 12e-3, 12e-3}, 1.0 - 5e-5);
+    if (s == steps / 2) {
+      const Wall& lid = sim.walls().back();
+      sim.set_wall_point(sim.walls().size() - 1, lid.point - sim.settings().skin * lid.normal);
+    }
+    sim.step();
+    r.touching += sim.touching_pair_count();
+    r.handed_back += sim.pairs_handed_to_scalar_law() + sim.walls_handed_to_scalar_law();
+    r.largest_overlap.push_back(sim.max_overlap_fraction());
+  }
+  r.steps = steps;
+  r.sweeps = sim.one_sweep_steps();
+  r.refreshes = sim.list_refresh_count() - refreshes;
+  r.rebuilds = sim.rebuild_count() - rebuilds;
+  r.particles = sim.particles();
+  r.walls = sim.walls();
+  r.springs = sim.pair_contacts().sliding_spring;
+  omp_set_num_threads(omp_get_num_procs());
+  return r;
+}
+
+void expect_identical(const SweepRun& a, const SweepRun& b) {
+  expect_same_particle_bits(a.particles, b.particles);
+  ASSERT_EQ(a.springs.size(), b.springs.size());
+  EXPECT_EQ(0, std::memcmp(a.springs.data(), b.springs.data(), a.springs.size() * sizeof(Vec3)));
+  EXPECT_EQ(a.largest_overlap, b.largest_overlap);
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (size_t k = 0; k < a.walls.size(); ++k) {
+    EXPECT_EQ(0, std::memcmp(&a.walls[k].point, &b.walls[k].point, sizeof(Vec3))) << "wall " << k;
+    EXPECT_EQ(0, std::memcmp(&a.walls[k].force, &b.walls[k].force, sizeof(Vec3))) << "wall " << k;
+  }
+  EXPECT_EQ(a.handed_back, b.handed_back);
+}
+
+constexpr long steps = 3000;
+
+}  // namespace
+
+TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
+  const SweepRun stages = run(Simulation::OneSweep::never, 1, steps);
+  if (stages.kernel == std::string("scalar")) GTEST_SKIP() << "the sweep needs the pair kernel";
+  EXPECT_EQ(stages.sweeps, 0);
+  // the run selects the list again and rebuilds it, touches the walls and hands contacts back
+  EXPECT_GE(stages.refreshes, 3);
+  EXPECT_GE(stages.rebuilds, 1);
+  EXPECT_GT(stages.touching, 200L * steps);
+  EXPECT_GT(stages.handed_back, 0);
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    const SweepRun swept = run(Simulation::OneSweep::always, threads, steps);
+    // all but the steps next to a list update, and the first (no bound yet)
+    EXPECT_GT(swept.sweeps, steps * 8 / 10);
+    EXPECT_LT(swept.sweeps, steps);
+    EXPECT_EQ(swept.refreshes, stages.refreshes);
+    EXPECT_EQ(swept.rebuilds, stages.rebuilds);
+    expect_identical(stages, swept);
+  }
+}
+
+TEST(OneSweep, AutomaticOnlyWhereThePartnersLieBeyondTheL2) {
+  // 1,728 beads: a row's partners lie about 150 beads ahead, some 230 KB, inside an L2 of 256 KB
+  // or more (the rule of the rows' prefetch, prefetch_pays)
+  if (l2_cache_bytes() < (256L << 10)) GTEST_SKIP() << "an L2 smaller than 256 KB";
+  const SweepRun automatic = run(Simulation::OneSweep::automatic, 2, 200);
+  EXPECT_EQ(automatic.sweeps, 0);
+}
+
+TEST(OneSweep, ACommandBetweenStepsForgetsTheBound) {
+  omp_set_num_threads(2);
+  Simulation sim = make_packing();
+  if (sim.pair_kernel_name() == std::string("scalar")) GTEST_SKIP() << "needs the pair kernel";
+  sim.set_one_sweep(Simulation::OneSweep::always);
+  sim.advance(20);
+  const long before = sim.one_sweep_steps();
+  EXPECT_GE(before, 15);
+  // the same velocity again: nothing moves differently, but the bound is no longer known
+  sim.set_particle_velocity(7, sim.particles().velocity[7]);
+  sim.step();
+  EXPECT_EQ(sim.one_sweep_steps(), before) << "the step after a velocity command runs in stages";
+  sim.step();
+  EXPECT_EQ(sim.one_sweep_steps(), before + 1) << "and the next one as a sweep again";
+  // A homogeneous strain of the positions (the affine compaction) widens the bound by the
+  // largest move: a small one (under 1e-9 m) keeps the sweep, one of 0.1 % (up to 21 um, more
+  // than half the list skin, 10 um) makes the next step run in stages, and it selects the list
+  // again.
+  const Vec3 centre{12e-3, 12e-3, 12e-3};
+  sim.scale_positions(centre, 1.0 - 1e-8);
+  sim.step();
+  EXPECT_EQ(sim.one_sweep_steps(), before + 2) << "a small move keeps the sweep";
+  const long refreshes = sim.list_refresh_count();
+  sim.scale_positions(centre, 0.999);
+  sim.step();
+  EXPECT_EQ(sim.one_sweep_steps(), before + 2) << "a move beyond the bound: in stages";
+  EXPECT_GT(sim.list_refresh_count(), refreshes);
+  sim.set_one_sweep(Simulation::OneSweep::never);
+  sim.advance(3);
+  EXPECT_EQ(sim.one_sweep_steps(), before + 2);
+  omp_set_num_threads(omp_get_num_procs());
+}
