@@ -44,10 +44,11 @@
 namespace grainlab {
 
 void Simulation::choose_one_sweep() {
+  const bool pays =
+      one_sweep_pays(partner_reach_, max_partner_ahead_, l2_cache_bytes(), l3_cache_bytes());
   one_sweep_wanted_ =
       uses_pair_kernel() && !entry_owners_.empty() &&
-      (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic &&
-                                                 prefetch_pays(partner_reach_, l2_cache_bytes())));
+      (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic && pays));
   if (!one_sweep_wanted_) list_displacement2_ = position_scale2_ = next_speed2_ = INFINITY;
 }
 

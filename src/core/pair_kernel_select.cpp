@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -35,9 +36,19 @@ SimdPairKernel select_simd_pair_kernel() {
                            ": expected off, sse2, avx2, avx512 or auto (the default)");
 }
 
+namespace {
+constexpr double touched_bytes_per_bead = 1536.0;  // what a step touches per bead, about
+}  // namespace
+
 bool prefetch_pays(double partner_reach, long l2_cache_bytes) {
-  constexpr double touched_bytes_per_bead = 1536.0;
   return partner_reach * touched_bytes_per_bead > static_cast<double>(l2_cache_bytes);
+}
+
+bool one_sweep_pays(double partner_reach, long max_partner_ahead, long l2_cache_bytes,
+                    long l3_cache_bytes) {
+  return prefetch_pays(partner_reach, l2_cache_bytes) &&
+         static_cast<double>(max_partner_ahead) * touched_bytes_per_bead <=
+             0.25 * static_cast<double>(l3_cache_bytes);
 }
 
 double partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows) {
@@ -58,6 +69,23 @@ long l2_cache_bytes() {
   static const long bytes = [] {
     const long reported = sysconf(_SC_LEVEL2_CACHE_SIZE);
     return reported > 0 ? reported : 1L << 20;
+  }();
+  return bytes;
+}
+
+long l3_cache_bytes() {
+  static const long bytes = [] {
+    // Linux's own account of the cache first: glibc's sysconf reports the sum over the host's
+    // caches in some virtual machines (320 MiB on the development VM, whose one L3 is 32 MiB).
+    long size = 0;
+    char unit = 'B';
+    if (std::FILE* f = std::fopen("/sys/devices/system/cpu/cpu0/cache/index3/size", "r")) {
+      if (std::fscanf(f, "%ld%c", &size, &unit) < 1) size = 0;
+      std::fclose(f);
+    }
+    if (size > 0) return unit == 'K' ? size << 10 : unit == 'M' ? size << 20 : size;
+    const long reported = sysconf(_SC_LEVEL3_CACHE_SIZE);
+    return reported > 0 ? reported : 8L << 20;
   }();
   return bytes;
 }

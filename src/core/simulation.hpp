@@ -109,9 +109,9 @@ class Simulation {
   bool rows_prefetch() const { return prefetch_ahead_; }
   // Selections of the active pair list: one per rebuild, and the refreshes between them.
   long list_refresh_count() const { return neighbors_.refresh_count(); }
-  // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where the packing's
-  // partners lie beyond the L2 (the rule of the rows' prefetch, prefetch_pays), always where it
-  // can, or never (in stages). The results are the same. Not saved with the state.
+  // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the
+  // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays), always where
+  // it can, or never (in stages). The results are the same. Not saved with the state.
   enum class OneSweep { automatic, always, never };
   void set_one_sweep(OneSweep choice) {
     one_sweep_choice_ = choice;

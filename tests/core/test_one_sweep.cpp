@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "core/pair_kernel_simd.hpp"
 #include "core/random_insertion.hpp"
 #include "core/simulation.hpp"
 #include "support/same_bits.hpp"
@@ -126,9 +127,17 @@ TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
   }
 }
 
-TEST(OneSweep, AutomaticOnlyWhereThePartnersLieBeyondTheL2) {
+TEST(OneSweep, AutomaticWherePartnersLieBeyondTheL2AndTheDriftsLeadFitsTheL3) {
+  // at about 1.5 KiB a bead: a mean reach beyond the L2, a farthest partner within a quarter of
+  // the L3
+  EXPECT_FALSE(one_sweep_pays(600.0, 1200, 1L << 20, 32L << 20));   // the reach inside the L2
+  EXPECT_TRUE(one_sweep_pays(1475.0, 2952, 1L << 20, 32L << 20));   // dense-88k on the VM
+  EXPECT_FALSE(one_sweep_pays(3000.0, 7933, 1L << 20, 32L << 20));  // 744,704 beads there
+  EXPECT_TRUE(one_sweep_pays(3000.0, 7933, 1L << 20, 64L << 20));   // a larger L3
+  EXPECT_FALSE(one_sweep_pays(1475.0, 2952, 4L << 20, 32L << 20));  // a larger L2
+  EXPECT_GT(l3_cache_bytes(), 0);
   // 1,728 beads: a row's partners lie about 150 beads ahead, some 230 KB, inside an L2 of 256 KB
-  // or more (the rule of the rows' prefetch, prefetch_pays)
+  // or more
   if (l2_cache_bytes() < (256L << 10)) GTEST_SKIP() << "an L2 smaller than 256 KB";
   const SweepRun automatic = run(Simulation::OneSweep::automatic, 2, 200);
   EXPECT_EQ(automatic.sweeps, 0);
