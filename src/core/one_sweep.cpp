@@ -43,6 +43,12 @@
 
 namespace grainlab {
 
+// The most threads a step runs as one sweep with automatically. Measured on 1 and 2 threads
+// (the 2-core development VM); on 16 cores, where the stages' chunk sharing is worth 0.74 -> 0.83
+// of parallel efficiency (docs/performance.md sec. 16) and the sweep's blocks are fixed, it is
+// not measured yet.
+constexpr int one_sweep_automatic_threads = 2;
+
 void Simulation::choose_one_sweep() {
   const bool pays =
       one_sweep_pays(partner_reach_, max_partner_ahead_, l2_cache_bytes(), l3_cache_bytes());
@@ -55,6 +61,10 @@ void Simulation::choose_one_sweep() {
 bool Simulation::one_sweep_possible() {
   if (!one_sweep_wanted_) return false;
   const size_t n = particles_.size();
+  // (automatic: only on the thread counts it was measured on; docs/performance.md sec. 27)
+  if (one_sweep_choice_ == OneSweep::automatic &&
+      step_team(static_cast<long>(n)) > one_sweep_automatic_threads)
+    return false;
   if (!neighbors_.built_for(n) || neighbors_.rebuild_possible_before_refresh() ||
       !neighbors_.walls_and_count_allow(n, walls_))
     return false;

@@ -1,7 +1,9 @@
 // The step loop. One step of velocity Verlet (kick-drift-kick) for translation and rotation of
 // spheres, read top-down as named stages:
-//   half kick + drift -> move walls -> neighbour list (if stale) -> pair forces -> wall forces
-//   -> gather per particle -> half kick -> health check.
+//   move walls -> half kick + drift -> neighbour list (if stale) -> pair forces -> wall forces
+//   -> gather per particle -> half kick -> health check,
+// as stages (each a pass over all particles) or, where no list update can follow the drift in a
+// large packing, as one sweep that takes each particle through them in turn (core/one_sweep.cpp).
 // The core knows nothing of laboratory tests; controllers change wall velocities between steps.
 #pragma once
 
@@ -110,8 +112,9 @@ class Simulation {
   // Selections of the active pair list: one per rebuild, and the refreshes between them.
   long list_refresh_count() const { return neighbors_.refresh_count(); }
   // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the
-  // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays), always where
-  // it can, or never (in stages). The results are the same. Not saved with the state.
+  // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays) on up to 2
+  // threads (where it was measured), always where it can, or never (in stages). The results are
+  // the same. Not saved with the state.
   enum class OneSweep { automatic, always, never };
   void set_one_sweep(OneSweep choice) {
     one_sweep_choice_ = choice;
