@@ -165,16 +165,13 @@ void Simulation::index_entry_owners() {
   particle_records_.resize(particles_.size() * particle_record_size);
   entry_owners_ = row_of_each_entry(c.row_start);
   wall_entry_owners_ = row_of_each_entry(wall_contacts_.row_start);
-  long ahead = 0;  // (partners lie after their rows' particles)
-  for (size_t e = 0; e < c.partner.size(); ++e)
-    ahead = std::max(ahead, static_cast<long>(c.partner[e]) - static_cast<long>(entry_owners_[e]));
-  max_partner_ahead_ = ahead;
-  // the rows prefetch where the partners lie far ahead (core/pair_kernel_simd.hpp)
+  // the rows prefetch, and a step may run as one sweep, where the partners lie far ahead
+  // (core/pair_kernel_simd.hpp)
   using Prefetch = SimulationSettings::Prefetch;
   partner_reach_ = partner_reach(c.row_start.data(), c.partner.data(), particles_.size());
-  prefetch_ahead_ =
-      settings_.prefetch == Prefetch::always || (settings_.prefetch == Prefetch::automatic &&
-                                                 prefetch_pays(partner_reach_, l2_cache_bytes()));
+  prefetch_ahead_ = settings_.prefetch == Prefetch::always ||
+                    (settings_.prefetch == Prefetch::automatic &&
+                     prefetch_pays(partner_reach_.mean, l2_cache_bytes()));
   choose_one_sweep();
   const std::vector<int32_t>& material = particles_.material;
   one_material_ = !material.empty() && std::all_of(material.begin(), material.end(),

@@ -7,7 +7,7 @@
 // gathered within a few hundred particles of each other:
 //
 //   - the rows of particles [first, end) read the records and positions of their partners,
-//     which lie after them, at most max_partner_ahead_ further on (the neighbour list's cell
+//     which lie after them, at most partner_reach_.farthest further on (the neighbour list's cell
 //     order): the drift runs that far ahead of the rows;
 //   - a particle's sums need its own row and the entries where it is second, whose rows come
 //     before it: it is gathered and kicked right after its own row.
@@ -27,7 +27,7 @@
 //
 // Threads: each takes its block of the partition (core/thread_partition.hpp) and sweeps it.
 //   1. It drifts the head of its block, the particles the rows of the blocks before it may reach
-//      (max_partner_ahead_), and waits for the others.
+//      (partner_reach_.farthest), and waits for the others.
 //   2. It sweeps its block. A particle that is second in an entry of an earlier block is "late":
 //      its sums are not complete until the other thread's rows are, and that thread's scalar law
 //      may read its velocity and force until then; it is left for stage 3. Late particles lie in
@@ -50,8 +50,8 @@ namespace grainlab {
 constexpr int one_sweep_automatic_threads = 2;
 
 void Simulation::choose_one_sweep() {
-  const bool pays =
-      one_sweep_pays(partner_reach_, max_partner_ahead_, l2_cache_bytes(), l3_cache_bytes());
+  const bool pays = one_sweep_pays(partner_reach_.mean, partner_reach_.farthest, l2_cache_bytes(),
+                                   l3_cache_bytes());
   one_sweep_wanted_ =
       uses_pair_kernel() && !entry_owners_.empty() &&
       (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic && pays));
@@ -103,7 +103,7 @@ void Simulation::sweep_step() {
   const double dt = settings_.time_step, half = 0.5 * dt;
   ParticleStore& p = particles_;
   const long n = static_cast<long>(p.size());
-  const long ahead = max_partner_ahead_;
+  const long ahead = partner_reach_.farthest;
   const double half_list_skin2 = neighbors_.half_list_skin2();
   constexpr long drift_tile = 256;   // particles per call to the records (as kick_and_drift)
   constexpr long force_tile = 1024;  // particles per call to the rows, walls and gather

@@ -51,7 +51,8 @@ bool one_sweep_pays(double partner_reach, long max_partner_ahead, long l2_cache_
              0.25 * static_cast<double>(l3_cache_bytes);
 }
 
-double partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows) {
+PartnerReach partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows) {
+  PartnerReach reach;
   double sum = 0.0;
   size_t counted = 0;
   for (size_t i = 0; i < rows; ++i) {
@@ -59,10 +60,13 @@ double partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t 
     uint32_t farthest = 0;
     for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e)
       farthest = std::max(farthest, partner[e]);
-    sum += farthest > i ? static_cast<double>(farthest - i) : 0.0;
+    const long ahead = farthest > i ? static_cast<long>(farthest - i) : 0;
+    sum += static_cast<double>(ahead);
+    reach.farthest = std::max(reach.farthest, ahead);
     ++counted;
   }
-  return counted > 0 ? sum / static_cast<double>(counted) : 0.0;
+  reach.mean = counted > 0 ? sum / static_cast<double>(counted) : 0.0;
+  return reach;
 }
 
 long l2_cache_bytes() {

@@ -156,8 +156,14 @@ SimdPairKernel select_simd_pair_kernel();
 // 1 MiB L2 (the switch at 683 beads): a reach of 255 and 506 beads level, of 997 to 1,475 beads
 // 1.2-1.3x faster.
 bool prefetch_pays(double partner_reach, long l2_cache_bytes);
-// The partner_reach of a CSR pair list (rows without entries left out; 0 when all are empty).
-double partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows);
+// How far ahead a CSR pair list's partners lie in the particle order: the mean over the rows of
+// the farthest partner's distance (the partner_reach of prefetch_pays; rows without entries left
+// out), and the farthest over all rows (one_sweep_pays' max_partner_ahead). 0 when all are empty.
+struct PartnerReach {
+  double mean = 0.0;
+  long farthest = 0;
+};
+PartnerReach partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows);
 // This CPU's L2 data cache per core, bytes (1 MiB where the system does not say).
 long l2_cache_bytes();
 // Whether a step as one sweep pays (core/one_sweep.cpp, docs/performance.md sec. 27): where the

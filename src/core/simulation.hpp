@@ -205,11 +205,11 @@ class Simulation {
   double list_displacement2_ = INFINITY, position_scale2_ = INFINITY, next_speed2_ = INFINITY;
   OneSweep one_sweep_choice_ = OneSweep::automatic;
   bool one_sweep_wanted_ = false;  // the choice for this list: the drift and kick form the bound
-  double partner_reach_ = 0.0;     // partner_reach of the list (index_entry_owners)
   long one_sweep_steps_ = 0;
-  // The largest partner index minus first index over the pair entries (index_entry_owners): how
-  // far ahead of a row its partners' records must have been written.
-  long max_partner_ahead_ = 0;
+  // How far ahead of their rows the list's partners lie (index_entry_owners): the mean decides
+  // the rows' prefetch and the sweep, the farthest how far ahead of a row the sweep's drift must
+  // have written its partners' records.
+  PartnerReach partner_reach_;
   // The vectorised pair loop for the reference law (no rolling, twisting or rolling-force piece),
   // the first particle of each entry, and room for the entries the kernel hands back (first
   // touch in the step), one slot per entry.

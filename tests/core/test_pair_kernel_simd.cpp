@@ -201,9 +201,12 @@ TEST(PairKernelSimd, RowsThatPrefetchGiveTheSameBits) {
 TEST(PairKernelSimd, PrefetchWhereThePartnersLieBeyondTheL2) {
   // rows 0: partners 3 and 5 (farthest 5 ahead); 1: none (left out); 2: partner 4 (2 ahead)
   const std::vector<uint32_t> row_start{0, 2, 2, 3}, partner{3, 5, 4};
-  EXPECT_DOUBLE_EQ(partner_reach(row_start.data(), partner.data(), 3), 3.5);
+  const PartnerReach reach = partner_reach(row_start.data(), partner.data(), 3);
+  EXPECT_DOUBLE_EQ(reach.mean, 3.5);
+  EXPECT_EQ(reach.farthest, 5);
   const std::vector<uint32_t> empty_rows{0, 0, 0};
-  EXPECT_EQ(partner_reach(empty_rows.data(), nullptr, 2), 0.0);
+  EXPECT_EQ(partner_reach(empty_rows.data(), nullptr, 2).mean, 0.0);
+  EXPECT_EQ(partner_reach(empty_rows.data(), nullptr, 2).farthest, 0);
   // about 1.5 KiB a bead: on a 1 MiB L2 the switch lies at 683 beads, on 2 MiB at 1,365
   EXPECT_FALSE(prefetch_pays(600.0, 1L << 20));
   EXPECT_TRUE(prefetch_pays(800.0, 1L << 20));
