@@ -132,10 +132,7 @@ void Simulation::sweep_step() {
       while (drifted < target) {
         const long end = std::min(target, drifted + drift_tile);
         for (long i = drifted; i < end; ++i) {
-          p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-          p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-          p.position[i] += dt * p.velocity[i];
-          p.rotation[i] += dt * p.angular_velocity[i];
+          kick_and_drift_particle(i, half, dt);
           const double d2 = neighbors_.list_displacement2(i, p.position[i]);
           stale |= d2 > half_list_skin2 ? 1 : 0;
           displacement2 = std::max(displacement2, d2);

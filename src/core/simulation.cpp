@@ -141,10 +141,7 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
     for (long first = block.first; first < block.end; first += tile) {
       const long end = std::min(block.end, first + tile);
       for (long i = first; i < end; ++i) {
-        p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-        p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-        p.position[i] += dt * p.velocity[i];
-        p.rotation[i] += dt * p.angular_velocity[i];
+        kick_and_drift_particle(i, half, dt);
         if (check_particles) {
           const double d2 = neighbors_.list_displacement2(i, p.position[i]);
           stale |= d2 > half_list_skin2 ? 1 : 0;  // moved_beyond_half_list_skin

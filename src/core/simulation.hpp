@@ -139,6 +139,15 @@ class Simulation {
   // evaluation that follows.
   enum class ListUpdate { none, refresh, rebuild };
   void drift_walls();  // the walls' half kick and drift (before the particles')
+  // Velocity Verlet's first half kick and drift of particle i, the same arithmetic in both
+  // schedules: v += dt/2 F/m, w += dt/2 T/I, then x += dt v and the rotation += dt w.
+  void kick_and_drift_particle(long i, double half, double dt) {
+    ParticleStore& p = particles_;
+    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    p.position[i] += dt * p.velocity[i];
+    p.rotation[i] += dt * p.angular_velocity[i];
+  }
   ListUpdate kick_and_drift(bool& records_written);
   // The step as one sweep over the particles (core/one_sweep.cpp): where no particle can move
   // half the list skin in this step (from list_displacement2_ and next_speed2_), no list update
