@@ -61,8 +61,9 @@ class NeighborSearch {
     return position_at_build_.size() == particle_count;
   }
   bool moved_beyond_half_skin(size_t i, const Vec3& x) const {
-    return norm2(x - position_at_build_[i]) > 0.25 * skin_ * skin_;
+    return norm2(x - position_at_build_[i]) > half_skin2();
   }
+  double half_skin2() const { return 0.25 * skin_ * skin_; }
   // Whether particle i at x has moved more than half the list skin since the active list was
   // selected (then refresh it).
   bool moved_beyond_half_list_skin(size_t i, const Vec3& x) const {
@@ -74,6 +75,10 @@ class NeighborSearch {
     return norm2(x - position_at_refresh_[i]);
   }
   double half_list_skin2() const { return 0.25 * list_skin_ * list_skin_; }
+  // The positions those tests measure from (per particle; where built_for the particles):
+  // at the last build and at the last selection.
+  const Vec3* position_at_build() const { return position_at_build_.data(); }
+  const Vec3* position_at_refresh() const { return position_at_refresh_.data(); }
   // Whether a step must test moved_beyond_half_skin at all: false while every particle, at the
   // last selection, was so close to where the list was built that moving another half list skin
   // cannot take it beyond half the skin. Then only a step that refreshes needs the test

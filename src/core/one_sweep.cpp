@@ -100,11 +100,10 @@ void Simulation::close_particles(long first, long end, long block_first, bool la
 }
 
 void Simulation::sweep_step() {
-  const double dt = settings_.time_step, half = 0.5 * dt;
-  ParticleStore& p = particles_;
-  const long n = static_cast<long>(p.size());
+  const double dt = settings_.time_step;
+  const long n = static_cast<long>(particles_.size());
   const long ahead = partner_reach_.farthest;
-  const double half_list_skin2 = neighbors_.half_list_skin2();
+  const ParticlePassInput pass = particle_pass_input(true, false);
   constexpr long drift_tile = 256;   // particles per call to the records (as kick_and_drift)
   constexpr long force_tile = 1024;  // particles per call to the rows, walls and gather
   prepare_pair_forces();
@@ -128,16 +127,11 @@ void Simulation::sweep_step() {
     // The first half kick and the drift of the particles up to `target` (kick_and_drift's
     // arithmetic and its list test), with their records.
     long drifted = block.first;
+    DriftTally tally;
     const auto drift_to = [&](long target) {
       while (drifted < target) {
         const long end = std::min(target, drifted + drift_tile);
-        for (long i = drifted; i < end; ++i) {
-          kick_and_drift_particle(i, half, dt);
-          const double d2 = neighbors_.list_displacement2(i, p.position[i]);
-          stale |= d2 > half_list_skin2 ? 1 : 0;
-          displacement2 = std::max(displacement2, d2);
-          scale2 = std::max(scale2, norm2(p.position[i]));
-        }
+        particle_passes_.kick_and_drift(pass, drifted, end, true, tally);
         write_particle_records(dt, {drifted, end});
         drifted = end;
       }
@@ -160,6 +154,9 @@ void Simulation::sweep_step() {
                     max_speed2, next_speed2);
     busy += omp_get_wtime() - since;
     partition_.record(omp_get_thread_num(), block.end - block.first, busy);
+    stale |= tally.stale;
+    displacement2 = std::max(displacement2, tally.displacement2);
+    scale2 = std::max(scale2, tally.scale2);
   }
   if (stale != 0)  // one_sweep_possible's bound excludes it: a bug, not a physical state
     throw std::logic_error("a particle moved half the list skin in a step run as one sweep");

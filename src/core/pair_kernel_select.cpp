@@ -1,4 +1,5 @@
-// Run-time choice of the vectorised pair kernel (core/pair_kernel_simd.hpp).
+// Run-time choice of the vectorised pair kernel (core/pair_kernel_simd.hpp) and of the particle
+// passes (core/particle_passes_simd.hpp).
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "core/pair_kernel_simd.hpp"
+#include "core/particle_passes_simd.hpp"
 
 namespace grainlab {
 
@@ -34,6 +36,14 @@ SimdPairKernel select_simd_pair_kernel() {
     return {&simd_sse2::pair_rows, &simd_sse2::particle_records, &simd_sse2::wall_law, "sse2"};
   throw std::runtime_error("GRAINLAB_SIMD=" + wanted +
                            ": expected off, sse2, avx2, avx512 or auto (the default)");
+}
+
+SimdParticlePasses select_simd_particle_passes() {
+  const std::string kernel = select_simd_pair_kernel().name;
+  if (kernel == "avx512") return {&simd_avx512::kick_and_drift, &simd_avx512::half_kick, "avx512"};
+  if (kernel == "avx2") return {&simd_avx2::kick_and_drift, &simd_avx2::half_kick, "avx2"};
+  return {&simd_sse2::kick_and_drift, &simd_sse2::half_kick,
+          "sse2"};  // also where the kernel is off
 }
 
 namespace {

@@ -115,17 +115,16 @@ void Simulation::drift_walls() {
 // forces held), tile by tile while the tile's velocities and forces are still in the caches, and
 // sets records_written; the force region then skips its own records stage.
 Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
-  const double dt = settings_.time_step, half = 0.5 * dt;
-  ParticleStore& p = particles_;
-  const long n = static_cast<long>(p.size());
+  const double dt = settings_.time_step;
+  const long n = static_cast<long>(particles_.size());
   // (the list's positions are only looked at when it was built for this many particles)
-  const bool check_particles = neighbors_.built_for(p.size());
+  const bool check_particles = neighbors_.built_for(particles_.size());
   // (the test against the build's positions only where it could come true before a refresh;
   // a refresh step makes it in full in step())
   const bool check_rebuild = check_particles && neighbors_.rebuild_possible_before_refresh();
   records_written = uses_pair_kernel();
   constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
-  const double half_list_skin2 = neighbors_.half_list_skin2();
+  const ParticlePassInput pass = particle_pass_input(check_particles, check_rebuild);
   // (the bound of one_sweep_possible, where the next step may run as one sweep)
   const bool bound = check_particles && one_sweep_wanted_;
   int moved = 0, stale = 0;
@@ -138,53 +137,53 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   {
     const IndexBlock block = partition_.thread_block_of(n);
     const double start = omp_get_wtime();
+    DriftTally tally;
     for (long first = block.first; first < block.end; first += tile) {
       const long end = std::min(block.end, first + tile);
-      for (long i = first; i < end; ++i) {
-        kick_and_drift_particle(i, half, dt);
-        if (check_particles) {
-          const double d2 = neighbors_.list_displacement2(i, p.position[i]);
-          stale |= d2 > half_list_skin2 ? 1 : 0;  // moved_beyond_half_list_skin
-          if (bound) {
-            displacement2 = std::max(displacement2, d2);
-            scale2 = std::max(scale2, norm2(p.position[i]));
-          }
-          if (check_rebuild) moved |= neighbors_.moved_beyond_half_skin(i, p.position[i]) ? 1 : 0;
-        }
-      }
+      particle_passes_.kick_and_drift(pass, first, end, bound, tally);
       if (records_written) write_particle_records(dt, {first, end});
     }
+    stale |= tally.stale, moved |= tally.moved;
+    displacement2 = std::max(displacement2, tally.displacement2);
+    scale2 = std::max(scale2, tally.scale2);
     partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
   }
   list_displacement2_ = bound ? displacement2 : INFINITY;
   position_scale2_ = bound ? scale2 : INFINITY;
-  if (moved != 0 || !neighbors_.walls_and_count_allow(p.size(), walls_)) return ListUpdate::rebuild;
+  if (moved != 0 || !neighbors_.walls_and_count_allow(particles_.size(), walls_))
+    return ListUpdate::rebuild;
   return stale != 0 ? ListUpdate::refresh : ListUpdate::none;
 }
 
 // Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:
 // v(t + dt) = v(t + dt/2) + dt/2 F/m. Returns the largest speed squared (NaN as infinite).
+// (A NaN speed counts as infinite. next_speed2: the velocity the next step's drift will move a
+// particle at, as it will form it, unless a command changes the velocity first.)
 double Simulation::half_kick_particles(IndexBlock b, double* next_speed2) {
-  const double half = 0.5 * settings_.time_step;
-  ParticleStore& p = particles_;
-  const bool bound = next_speed2 != nullptr;
-  double max_speed2 = 0.0, max_next2 = 0.0;
-  for (long i = b.first; i < b.end; ++i) {
-    const Vec3 kick = (half * p.inverse_mass[i]) * p.force[i];
-    p.velocity[i] += kick;
-    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-    const double v2 = norm2(p.velocity[i]);
-    // NaN compares false: a NaN speed is recorded as infinite.
-    max_speed2 = std::max(max_speed2, v2 == v2 ? v2 : INFINITY);
-    if (bound) {
-      // the velocity the next step's drift will move the particle at, as it will form it
-      // (unless a command changes the velocity first)
-      const double next2 = norm2(p.velocity[i] + kick);
-      max_next2 = std::max(max_next2, next2 == next2 ? next2 : INFINITY);
-    }
-  }
-  if (bound) *next_speed2 = std::max(*next_speed2, max_next2);
+  double max_speed2 = 0.0;
+  particle_passes_.half_kick(particle_pass_input(false, false), b.first, b.end, max_speed2,
+                             next_speed2);
   return max_speed2;
+}
+
+ParticlePassInput Simulation::particle_pass_input(bool list_test, bool rebuild_test) {
+  ParticleStore& p = particles_;
+  // (Vec3 is three packed doubles: core/vec3.hpp)
+  const auto flat = [](std::vector<Vec3>& v) { return reinterpret_cast<double*>(v.data()); };
+  const auto positions = [](const Vec3* x) { return reinterpret_cast<const double*>(x); };
+  return {flat(p.position),
+          flat(p.velocity),
+          flat(p.angular_velocity),
+          flat(p.rotation),
+          flat(p.force),
+          flat(p.torque),
+          p.inverse_mass.data(),
+          p.inverse_inertia.data(),
+          list_test ? positions(neighbors_.position_at_refresh()) : nullptr,
+          rebuild_test ? positions(neighbors_.position_at_build()) : nullptr,
+          neighbors_.half_list_skin2(),
+          neighbors_.half_skin2(),
+          settings_.time_step};
 }
 
 void Simulation::half_kick_walls() {

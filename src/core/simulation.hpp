@@ -17,6 +17,7 @@
 #include "core/contact_store.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/pair_kernel_simd.hpp"
+#include "core/particle_passes_simd.hpp"
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
@@ -139,15 +140,10 @@ class Simulation {
   // evaluation that follows.
   enum class ListUpdate { none, refresh, rebuild };
   void drift_walls();  // the walls' half kick and drift (before the particles')
-  // Velocity Verlet's first half kick and drift of particle i, the same arithmetic in both
-  // schedules: v += dt/2 F/m, w += dt/2 T/I, then x += dt v and the rotation += dt w.
-  void kick_and_drift_particle(long i, double half, double dt) {
-    ParticleStore& p = particles_;
-    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
-    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
-    p.position[i] += dt * p.velocity[i];
-    p.rotation[i] += dt * p.angular_velocity[i];
-  }
+  // Views of the particles for the passes of velocity Verlet (core/particle_passes_simd.hpp),
+  // with the neighbour lists' positions for the drift's tests: against the selection's
+  // (list_test) and against the build's (rebuild_test).
+  ParticlePassInput particle_pass_input(bool list_test, bool rebuild_test);
   ListUpdate kick_and_drift(bool& records_written);
   // The step as one sweep over the particles (core/one_sweep.cpp): where no particle can move
   // half the list skin in this step (from list_displacement2_ and next_speed2_), no list update
@@ -223,6 +219,8 @@ class Simulation {
   // the first particle of each entry, and room for the entries the kernel hands back (first
   // touch in the step), one slot per entry.
   SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
+  // The first half kick and drift, and the closing half kick, across particles
+  SimdParticlePasses particle_passes_ = select_simd_particle_passes();
   std::vector<uint32_t> deferred_pairs_;
   std::vector<uint32_t> entry_owners_;       // per pair entry: its first particle (for the kernel)
   std::vector<double> particle_records_;     // the kernel's per-particle velocity records

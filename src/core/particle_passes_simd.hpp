@@ -1,0 +1,84 @@
+// The per-particle passes of velocity Verlet, vectorised across particles: the first half kick
+// and drift (with the neighbour lists' displacement tests) and the closing half kick (with the
+// speeds the health check and the one-sweep bound read). In a packing at rest these passes
+// stream every bead's arrays once per step each, and written one particle at a time they cost
+// about 130 scalar instructions a bead: a fifth of the reference shear's step and two fifths of
+// the preparation's loose stage (docs/performance.md sec. 28).
+//
+// Every value is the scalar loop's, bit for bit: each component is the same IEEE product and
+// sum (the objects are compiled with -ffp-contract=off), a squared length is summed x, y, z in
+// that order, and a largest value is an exact maximum that skips NaN as std::max(largest, x)
+// does. So the results do not depend on the instruction set, the thread count or where a
+// range starts (tests/core/test_particle_passes_simd.cpp).
+//
+// Compiled once per instruction set with the pair kernel (src/core/CMakeLists.txt): the AVX-512
+// object takes 8 particles (24 doubles of each Vec3 array) per iteration; the SSE2 and AVX2
+// objects run the particle loop as written. Chosen with the pair kernel (GRAINLAB_SIMD; "off",
+// which turns the pair kernel off, keeps the SSE2 passes: the same arithmetic). Plain data only,
+// as core/pair_kernel_simd.hpp.
+#pragma once
+
+namespace grainlab {
+
+// Views of the particle store (Vec3 fields as consecutive x, y, z doubles; SI units).
+struct ParticlePassInput {
+  double* position;
+  double* velocity;
+  double* angular_velocity;
+  double* rotation;
+  const double* force;
+  const double* torque;
+  const double* inverse_mass;
+  const double* inverse_inertia;
+  // The neighbour lists' positions at the active list's selection and at the last build; null:
+  // the drift does not test them.
+  const double* position_at_refresh;
+  const double* position_at_build;
+  double half_list_skin2;  // m^2: a particle beyond it from position_at_refresh is stale
+  double half_skin2;       // m^2: beyond it from position_at_build, the list must be rebuilt
+  double time_step;        // s
+};
+
+// What the drift found over the particles it moved: some particle beyond half the list skin
+// (stale) or half the skin (moved), and, where asked (bound), the largest squared displacement
+// from position_at_refresh and the largest squared distance from the origin (m^2). Each call
+// raises them; start from zeros.
+struct DriftTally {
+  int stale = 0, moved = 0;
+  double displacement2 = 0.0, scale2 = 0.0;
+};
+
+// v += dt/2 F/m, w += dt/2 T/I, x += dt v, rotation += dt w for particles [first, end), with the
+// tests position_at_refresh and position_at_build ask for.
+using SimdKickAndDrift = void (*)(const ParticlePassInput& in, long first, long end, bool bound,
+                                  DriftTally& tally);
+// v += dt/2 F/m, w += dt/2 T/I for particles [first, end). Raises max_speed2 to the largest |v|^2
+// (NaN counts as infinite) and, with next_speed2, that to the largest |v + dt/2 F/m|^2: the speed
+// the next drift will give.
+using SimdHalfKick = void (*)(const ParticlePassInput& in, long first, long end, double& max_speed2,
+                              double* next_speed2);
+
+namespace simd_sse2 {
+void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
+void half_kick(const ParticlePassInput&, long, long, double&, double*);
+}  // namespace simd_sse2
+namespace simd_avx2 {
+void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
+void half_kick(const ParticlePassInput&, long, long, double&, double*);
+}  // namespace simd_avx2
+namespace simd_avx512 {
+void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
+void half_kick(const ParticlePassInput&, long, long, double&, double*);
+}  // namespace simd_avx512
+
+struct SimdParticlePasses {
+  SimdKickAndDrift kick_and_drift = nullptr;
+  SimdHalfKick half_kick = nullptr;
+  const char* name = "";  // "sse2", "avx2" or "avx512"
+};
+
+// The passes of the instruction set the pair kernel runs (select_simd_pair_kernel), SSE2 where
+// it is off. Throws as select_simd_pair_kernel.
+SimdParticlePasses select_simd_particle_passes();
+
+}  // namespace grainlab

@@ -1,0 +1,202 @@
+// The per-particle passes of velocity Verlet (core/particle_passes_simd.hpp) on every instruction
+// set this CPU runs, against a reference integration written here with core/vec3.hpp's
+// arithmetic, particle by particle: every value must be the reference's bit for bit, for any
+// range of particles (the AVX-512 object takes 8 at a time and the rest one by one).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/particle_passes_simd.hpp"
+#include "core/vec3.hpp"
+
+namespace grainlab {
+namespace {
+
+// Particles with random velocities, forces and masses (some fixed), positions since the
+// selection and the build some of which lie beyond the thresholds, and one NaN velocity.
+struct Pile {
+  std::vector<Vec3> position, velocity, angular_velocity, rotation, force, torque, at_refresh,
+      at_build;
+  std::vector<double> inverse_mass, inverse_inertia;
+  double half_list_skin2 = 4e-10, half_skin2 = 4e-8, time_step = 8.4e-8;
+
+  explicit Pile(int n, unsigned seed) {
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const auto vec = [&](double scale) {
+      return Vec3{scale * u(random), scale * u(random), scale * u(random)};
+    };
+    for (int i = 0; i < n; ++i) {
+      position.push_back(vec(0.04));
+      velocity.push_back(vec(0.3));
+      angular_velocity.push_back(vec(300.0));
+      rotation.push_back(vec(1.0));
+      force.push_back(vec(0.05));
+      torque.push_back(vec(1e-5));
+      // displacements since the selection about half the list skin, since the build about a
+      // tenth of the skin's half, a few beyond it
+      at_refresh.push_back(position.back() + vec(2.2e-5));
+      at_build.push_back(position.back() + vec(i % 37 == 5 ? 3e-4 : 2e-5));
+      const bool fixed = i % 29 == 3;
+      inverse_mass.push_back(fixed ? 0.0 : 1.0 / (1.05e-5 * (1.0 + 0.02 * u(random))));
+      inverse_inertia.push_back(fixed ? 0.0 : 1.0 / (4.2e-12 * (1.0 + 0.02 * u(random))));
+    }
+    if (n > 20) velocity[19].y = std::nan("");
+  }
+  ParticlePassInput input(bool list_test, bool rebuild_test) {
+    const auto flat = [](std::vector<Vec3>& v) { return &v[0].x; };
+    return {flat(position),
+            flat(velocity),
+            flat(angular_velocity),
+            flat(rotation),
+            flat(force),
+            flat(torque),
+            inverse_mass.data(),
+            inverse_inertia.data(),
+            list_test ? flat(at_refresh) : nullptr,
+            rebuild_test ? flat(at_build) : nullptr,
+            half_list_skin2,
+            half_skin2,
+            time_step};
+  }
+};
+
+bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+}
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// The reference: velocity Verlet's first half kick and drift, particle by particle.
+void reference_kick_and_drift(Pile& p, long first, long end, bool list_test, bool rebuild_test,
+                              bool bound, DriftTally& tally) {
+  const double dt = p.time_step, half = 0.5 * dt;
+  for (long i = first; i < end; ++i) {
+    p.velocity[i] += (half * p.inverse_mass[i]) * p.force[i];
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    p.position[i] += dt * p.velocity[i];
+    p.rotation[i] += dt * p.angular_velocity[i];
+    if (!list_test) continue;
+    const double d2 = norm2(p.position[i] - p.at_refresh[i]);
+    if (d2 > p.half_list_skin2) tally.stale = 1;
+    if (bound) {
+      tally.displacement2 = std::max(tally.displacement2, d2);
+      tally.scale2 = std::max(tally.scale2, norm2(p.position[i]));
+    }
+    if (rebuild_test && norm2(p.position[i] - p.at_build[i]) > p.half_skin2) tally.moved = 1;
+  }
+}
+
+// The reference closing half kick.
+void reference_half_kick(Pile& p, long first, long end, double& max_speed2, double* next_speed2) {
+  const double half = 0.5 * p.time_step;
+  for (long i = first; i < end; ++i) {
+    const Vec3 kick = (half * p.inverse_mass[i]) * p.force[i];
+    p.velocity[i] += kick;
+    p.angular_velocity[i] += (half * p.inverse_inertia[i]) * p.torque[i];
+    const double v2 = norm2(p.velocity[i]);
+    max_speed2 = std::max(max_speed2, std::isnan(v2) ? INFINITY : v2);
+    if (next_speed2) {
+      const double next2 = norm2(p.velocity[i] + kick);
+      *next_speed2 = std::max(*next_speed2, std::isnan(next2) ? INFINITY : next2);
+    }
+  }
+}
+
+struct Isa {
+  const char* name;
+  SimdParticlePasses passes;
+  bool supported;
+};
+std::vector<Isa> instruction_sets() {
+  __builtin_cpu_init();
+  return {{"sse2", {&simd_sse2::kick_and_drift, &simd_sse2::half_kick, "sse2"}, true},
+          {"avx2",
+           {&simd_avx2::kick_and_drift, &simd_avx2::half_kick, "avx2"},
+           __builtin_cpu_supports("avx2") != 0},
+          {"avx512",
+           {&simd_avx512::kick_and_drift, &simd_avx512::half_kick, "avx512"},
+           __builtin_cpu_supports("avx512f") != 0}};
+}
+
+// Ranges that start and end anywhere within a group of 8, are shorter than 8, or empty.
+std::vector<std::pair<long, long>> ranges(long n) {
+  return {{0, n}, {3, n - 5}, {1, 9}, {8, 16}, {5, 12}, {7, 7}, {40, 41}, {17, 40}, {n - 8, n}};
+}
+
+TEST(ParticlePasses, KickAndDriftGiveTheReferenceBitsOnEveryInstructionSet) {
+  constexpr int n = 203;
+  for (const Isa& isa : instruction_sets()) {
+    if (!isa.supported) continue;
+    for (const auto& [first, end] : ranges(n))
+      for (int tests = 0; tests < 5; ++tests) {
+        // no test; the list's; the list's and the bound; the list's and the build's; all
+        const bool list_test = tests > 0, bound = tests == 2 || tests == 4,
+                   rebuild_test = tests >= 3;
+        SCOPED_TRACE(std::string(isa.name) + " particles " + std::to_string(first) + ".." +
+                     std::to_string(end) + " tests " + std::to_string(tests));
+        Pile expected(n, 7), got(n, 7);
+        DriftTally want, have;
+        reference_kick_and_drift(expected, first, end, list_test, rebuild_test, bound, want);
+        isa.passes.kick_and_drift(got.input(list_test, rebuild_test), first, end, bound, have);
+        EXPECT_TRUE(same_bits(got.velocity, expected.velocity));
+        EXPECT_TRUE(same_bits(got.angular_velocity, expected.angular_velocity));
+        EXPECT_TRUE(same_bits(got.position, expected.position));
+        EXPECT_TRUE(same_bits(got.rotation, expected.rotation));
+        EXPECT_EQ(have.stale, want.stale);
+        EXPECT_EQ(have.moved, want.moved);
+        EXPECT_TRUE(same_bits(have.displacement2, want.displacement2))
+            << have.displacement2 << " against " << want.displacement2;
+        EXPECT_TRUE(same_bits(have.scale2, want.scale2));
+      }
+  }
+}
+
+TEST(ParticlePasses, TheTestsFindWhatMovedFarInEveryRange) {
+  // (that the comparison above is not between two tallies that never change)
+  constexpr int n = 203;
+  Pile pile(n, 7);
+  DriftTally all, first_five;
+  reference_kick_and_drift(pile, 0, n, true, true, true, all);
+  EXPECT_EQ(all.stale, 1);
+  EXPECT_EQ(all.moved, 1);  // particle 5, 42, ... moved 3e-4 m from the build
+  EXPECT_GT(all.displacement2, 0.0);
+  Pile again(n, 7);
+  reference_kick_and_drift(again, 0, 5, true, true, true, first_five);
+  EXPECT_EQ(first_five.moved, 0);
+}
+
+TEST(ParticlePasses, HalfKickGivesTheReferenceBitsAndSpeedsOnEveryInstructionSet) {
+  constexpr int n = 203;
+  for (const Isa& isa : instruction_sets()) {
+    if (!isa.supported) continue;
+    for (const auto& [first, end] : ranges(n))
+      for (const bool next : {false, true}) {
+        SCOPED_TRACE(std::string(isa.name) + " particles " + std::to_string(first) + ".." +
+                     std::to_string(end) + (next ? " with" : " without") + " the next speed");
+        Pile expected(n, 11), got(n, 11);
+        double want_speed2 = 0.0, want_next2 = 0.5, have_speed2 = 0.0, have_next2 = 0.5;
+        reference_half_kick(expected, first, end, want_speed2, next ? &want_next2 : nullptr);
+        isa.passes.half_kick(got.input(false, false), first, end, have_speed2,
+                             next ? &have_next2 : nullptr);
+        EXPECT_TRUE(same_bits(got.velocity, expected.velocity));
+        EXPECT_TRUE(same_bits(got.angular_velocity, expected.angular_velocity));
+        EXPECT_TRUE(same_bits(have_speed2, want_speed2))
+            << have_speed2 << " against " << want_speed2;
+        EXPECT_TRUE(same_bits(have_next2, want_next2));
+        // the NaN velocity of particle 19 counts as infinite wherever the range holds it
+        if (first <= 19 && 19 < end) {
+          EXPECT_EQ(have_speed2, INFINITY);
+        }
+      }
+  }
+}
+
+}  // namespace
+}  // namespace grainlab
