@@ -1,4 +1,6 @@
-// Simulation::gather: the force and torque on each particle, summed from the contact stores.
+// Simulation::gather: the force and torque on each particle, summed from the contact stores
+// (with the reference law, whose pairs carry no moments, by the particle passes:
+// core/particle_passes_simd.hpp).
 //
 // Compiled with -ffp-contract=off (src/core/CMakeLists.txt): a torque is formed here as lever ×
 // torque arm (core/contact_store.hpp), and unfused it is bit for bit the product the contact law
@@ -8,9 +10,9 @@
 namespace grainlab {
 namespace {
 
-// The sums of particles [first, end). Moments: whether the pairs carry rolling or twisting
-// moments (chosen once per call, so the loop without them tests nothing per entry).
-template <bool Moments>
+// The sums of particles [first, end) where the pairs carry rolling or twisting moments (the
+// reference law's, without them, are the particle passes': core/particle_passes_simd.hpp, the
+// same arithmetic less the moments).
 void gather_block(ParticleStore& p, const PairContacts& c, const WallContacts& wc, const Vec3& g,
                   bool external, long first, long end) {
   for (long i = first; i < end; ++i) {
@@ -23,14 +25,14 @@ void gather_block(ParticleStore& p, const PairContacts& c, const WallContacts& w
       const PairResult& x = c.result[e];
       f += x.force_on_first;
       t += contact_lever(r, x.overlap) * x.torque_arm;
-      if constexpr (Moments) t += c.moment[e];
+      t += c.moment[e];
     }
     for (uint32_t k = c.col_start[i]; k < c.col_start[i + 1]; ++k) {
       const uint32_t e = c.col_pair[k];
       const PairResult& x = c.result[e];
       f -= x.force_on_first;
       t += contact_lever(r, x.overlap) * x.torque_arm;
-      if constexpr (Moments) t -= c.moment[e];
+      t -= c.moment[e];
     }
     for (uint32_t e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
       f += wc.force_on_particle[e];
@@ -48,12 +50,31 @@ void gather_block(ParticleStore& p, const PairContacts& c, const WallContacts& w
 // the entries where it is second (opposite force), its wall contacts and its external force
 // (only while some particle has one, so that a run without them adds nothing, not even a zero).
 void Simulation::gather_particles(IndexBlock b) {
-  if (pairs_.moment.empty())
-    gather_block<false>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
-                        b.first, b.end);
-  else
-    gather_block<true>(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_,
-                       b.first, b.end);
+  if (!pairs_.moment.empty()) {
+    gather_block(particles_, pairs_, wall_contacts_, settings_.gravity, external_forces_, b.first,
+                 b.end);
+    return;
+  }
+  ParticleStore& p = particles_;
+  const PairContacts& c = pairs_;
+  const WallContacts& wc = wall_contacts_;
+  const auto flat = [](auto& v) { return reinterpret_cast<decltype(&v[0].x)>(v.data()); };
+  const Vec3& g = settings_.gravity;
+  static_assert(sizeof(PairResult) == 8 * sizeof(double));
+  const GatherInput in{c.row_start.data(),
+                       c.col_start.data(),
+                       c.col_pair.data(),
+                       reinterpret_cast<const double*>(c.result.data()),
+                       wc.row_start.data(),
+                       flat(wc.force_on_particle),
+                       flat(wc.torque_on_particle),
+                       p.radius.data(),
+                       p.inverse_mass.data(),
+                       external_forces_ ? flat(p.external_force) : nullptr,
+                       {g.x, g.y, g.z},
+                       flat(p.force),
+                       flat(p.torque)};
+  particle_passes_.gather(in, b.first, b.end);
 }
 
 // Wall totals, serial in entry order (few entries; deterministic).

@@ -40,10 +40,12 @@ SimdPairKernel select_simd_pair_kernel() {
 
 SimdParticlePasses select_simd_particle_passes() {
   const std::string kernel = select_simd_pair_kernel().name;
-  if (kernel == "avx512") return {&simd_avx512::kick_and_drift, &simd_avx512::half_kick, "avx512"};
-  if (kernel == "avx2") return {&simd_avx2::kick_and_drift, &simd_avx2::half_kick, "avx2"};
-  return {&simd_sse2::kick_and_drift, &simd_sse2::half_kick,
-          "sse2"};  // also where the kernel is off
+  if (kernel == "avx512")
+    return {&simd_avx512::kick_and_drift, &simd_avx512::half_kick, &simd_avx512::gather, "avx512"};
+  if (kernel == "avx2")
+    return {&simd_avx2::kick_and_drift, &simd_avx2::half_kick, &simd_avx2::gather, "avx2"};
+  // (also where the pair kernel is off: the same arithmetic)
+  return {&simd_sse2::kick_and_drift, &simd_sse2::half_kick, &simd_sse2::gather, "sse2"};
 }
 
 namespace {

@@ -282,6 +282,40 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
 void particle_records(const SimdPairInput& in, long first, long end) {
   // velocity_at_step_end / spin_at_step_end: v(t + dt/2) + dt/2 F(t)/m, the same operations
   const double half_dt = 0.5 * in.time_step;
+#if defined(__AVX512F__)
+  // A particle's Vec3s as 4-double vectors, the fourth value the next particle's x; its record in
+  // four overlapping stores in order, each fourth value overwritten by the next store. The last
+  // particle of the range loads and stores only its own values (masked): the next record may be
+  // another thread's, and the arrays may end with it.
+  const auto record_one = [&](long i, auto load3, auto store3) {
+    const long o = 3 * i;
+    const vd4 v = load3(in.velocity + o), w = load3(in.angular_velocity + o);
+    const vd4 f = load3(in.force + o), t = load3(in.torque + o);
+    const double kick = half_dt * in.inverse_mass[i], spin_kick = half_dt * in.inverse_inertia[i];
+    double* r = in.particle_record + particle_record_size * i;
+    store3(r, v);
+    store3(r + 3, w);
+    store3(r + 6, v + vd4{kick, kick, kick, kick} * f);
+    store3(r + 9, w + vd4{spin_kick, spin_kick, spin_kick, spin_kick} * t);
+  };
+  const auto load4 = [](const double* p) {
+    vd4 x;
+    __builtin_memcpy(&x, p, sizeof x);
+    return x;
+  };
+  const auto store4 = [](double* p, vd4 x) { __builtin_memcpy(p, &x, sizeof x); };
+  const auto masked_load3 = [](const double* p) {
+    const vd x = reinterpret_cast<vd>(_mm512_maskz_loadu_pd(0x07, p));
+    return __builtin_shufflevector(x, x, 0, 1, 2, 3);
+  };
+  const auto masked_store3 = [](double* p, vd4 x) {
+    _mm512_mask_storeu_pd(
+        p, 0x07, reinterpret_cast<__m512d>(__builtin_shufflevector(x, x, 0, 1, 2, 3, 0, 1, 2, 3)));
+  };
+  if (end <= first) return;
+  for (long i = first; i < end - 1; ++i) record_one(i, load4, store4);
+  record_one(end - 1, masked_load3, masked_store3);
+#else
   for (long i = first; i < end; ++i) {
     const double* v = in.velocity + 3 * i;
     const double* w = in.angular_velocity + 3 * i;
@@ -295,6 +329,7 @@ void particle_records(const SimdPairInput& in, long first, long end) {
     r[9] = w[0] + spin_kick * t[0], r[10] = w[1] + spin_kick * t[1],
     r[11] = w[2] + spin_kick * t[2];
   }
+#endif
 }
 
 double pair_rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* deferred,

@@ -226,6 +226,85 @@ void kick_range(const ParticlePassInput& in, long first, long end, double& max_s
   for (; i < end; ++i) kick_particle<Next>(in, i, half, max_speed2, max_next2);
 }
 
+// a += b and a -= b, component by component
+GRAINLAB_PASS_INLINE void add(double* a, const double* b) {
+  a[0] = a[0] + b[0], a[1] = a[1] + b[1], a[2] = a[2] + b[2];
+}
+GRAINLAB_PASS_INLINE void subtract(double* a, const double* b) {
+  a[0] = a[0] - b[0], a[1] = a[1] - b[1], a[2] = a[2] - b[2];
+}
+
+// The sums of one particle, as core/gather.cpp forms them: its weight, its row, its column (the
+// opposite force), its walls, its external force, each Vec3 added component by component; the
+// torque of a pair entry is the particle's lever (contact_lever: r - U_n / 2) times the arm.
+GRAINLAB_PASS_INLINE void gather_particle(const GatherInput& in, long i) {
+  const double r = in.radius[i];
+  double f[3] = {}, t[3] = {};
+  if (in.inverse_mass[i] > 0.0) {
+    const double m = 1.0 / in.inverse_mass[i];
+    f[0] = m * in.gravity[0], f[1] = m * in.gravity[1], f[2] = m * in.gravity[2];
+  }
+  for (uint32_t e = in.row_start[i]; e < in.row_start[i + 1]; ++e) {
+    const double* x = in.result + 8 * size_t{e};  // force, torque arm, overlap, F_n
+    add(f, x);
+    add_scaled(t, r - 0.5 * x[6], x + 3);
+  }
+  for (uint32_t k = in.col_start[i]; k < in.col_start[i + 1]; ++k) {
+    const double* x = in.result + 8 * size_t{in.col_pair[k]};
+    subtract(f, x);
+    add_scaled(t, r - 0.5 * x[6], x + 3);
+  }
+  for (uint32_t e = in.wall_row_start[i]; e < in.wall_row_start[i + 1]; ++e) {
+    add(f, in.force_on_particle + 3 * size_t{e});
+    add(t, in.torque_on_particle + 3 * size_t{e});
+  }
+  if (in.external_force) add(f, in.external_force + 3 * i);
+  double* out_f = in.force + 3 * i;
+  double* out_t = in.torque + 3 * i;
+  out_f[0] = f[0], out_f[1] = f[1], out_f[2] = f[2];
+  out_t[0] = t[0], out_t[1] = t[1], out_t[2] = t[2];
+}
+
+#if defined(__AVX512F__)
+// gather_particle with a particle's force in lanes 0..2 of one vector and its torque in lanes
+// 3..5 of another: a pair entry's result (force, torque arm, overlap, F_n) is one load, its force
+// added to the one and its arm, times the lever, to the other; the other lanes are never stored.
+GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v8 gravity) {
+  constexpr __mmask8 force_lanes = 0x07, torque_lanes = 0x38;
+  const double r = in.radius[i];
+  v8 f{}, t{};
+  if (in.inverse_mass[i] > 0.0) f = splat(1.0 / in.inverse_mass[i]) * gravity;
+  for (uint32_t e = in.row_start[i]; e < in.row_start[i + 1]; ++e) {
+    const double* x = in.result + 8 * size_t{e};
+    const v8 result = load(x);
+    f = f + result;
+    t = t + splat(r - 0.5 * x[6]) * result;
+  }
+  for (uint32_t k = in.col_start[i]; k < in.col_start[i + 1]; ++k) {
+    const double* x = in.result + 8 * size_t{in.col_pair[k]};
+    const v8 result = load(x);
+    f = f - result;
+    t = t + splat(r - 0.5 * x[6]) * result;
+  }
+  // (a Vec3 loaded into lanes 3..5 from 3 doubles before it: the lanes masked off are not read)
+  const auto in_torque_lanes = [](const double* vec3) {
+    return reinterpret_cast<v8>(_mm512_maskz_loadu_pd(
+        torque_lanes, reinterpret_cast<const double*>(reinterpret_cast<uintptr_t>(vec3) - 24)));
+  };
+  for (uint32_t e = in.wall_row_start[i]; e < in.wall_row_start[i + 1]; ++e) {
+    f = f + reinterpret_cast<v8>(
+                _mm512_maskz_loadu_pd(force_lanes, in.force_on_particle + 3 * size_t{e}));
+    t = t + in_torque_lanes(in.torque_on_particle + 3 * size_t{e});
+  }
+  if (in.external_force)
+    f = f + reinterpret_cast<v8>(_mm512_maskz_loadu_pd(force_lanes, in.external_force + 3 * i));
+  _mm512_mask_storeu_pd(in.force + 3 * i, force_lanes, reinterpret_cast<__m512d>(f));
+  _mm512_mask_storeu_pd(
+      reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24), torque_lanes,
+      reinterpret_cast<__m512d>(t));
+}
+#endif
+
 }  // namespace
 
 void kick_and_drift(const ParticlePassInput& in, long first, long end, bool bound,
@@ -246,6 +325,15 @@ void half_kick(const ParticlePassInput& in, long first, long end, double& max_sp
   if (next_speed2 == nullptr) return kick_range<false>(in, first, end, max_speed2, max_next2);
   kick_range<true>(in, first, end, max_speed2, max_next2);
   *next_speed2 = raise(*next_speed2, max_next2);
+}
+
+void gather(const GatherInput& in, long first, long end) {
+#if defined(__AVX512F__)
+  const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (long i = first; i < end; ++i) gather_particle_lanes(in, i, gravity);
+#else
+  for (long i = first; i < end; ++i) gather_particle(in, i);
+#endif
 }
 
 }  // namespace grainlab::GRAINLAB_SIMD_NS

@@ -18,6 +18,8 @@
 // as core/pair_kernel_simd.hpp.
 #pragma once
 
+#include <cstdint>
+
 namespace grainlab {
 
 // Views of the particle store (Vec3 fields as consecutive x, y, z doubles; SI units).
@@ -58,22 +60,49 @@ using SimdKickAndDrift = void (*)(const ParticlePassInput& in, long first, long 
 using SimdHalfKick = void (*)(const ParticlePassInput& in, long first, long end, double& max_speed2,
                               double* next_speed2);
 
+// Views of the contact stores (core/contact_store.hpp) for the gather of the reference law's
+// sums (no rolling or twisting moments): per particle, in this order, its weight m g, the
+// entries of its row (the force on the first body, the lever times the torque arm), the entries
+// where it is second (the opposite force, its lever times the arm), its wall contacts and its
+// external force.
+struct GatherInput {
+  const uint32_t* row_start;        // pair entries per particle, where it is first (N + 1)
+  const uint32_t* col_start;        // where it is second (N + 1) ...
+  const uint32_t* col_pair;         // ... and those entries' numbers
+  const double* result;             // per pair entry a PairResult: 8 doubles
+  const uint32_t* wall_row_start;   // wall entries per particle (N + 1)
+  const double* force_on_particle;  // per wall entry, Vec3
+  const double* torque_on_particle;
+  const double* radius;
+  const double* inverse_mass;
+  const double* external_force;  // per particle, Vec3; null: none
+  double gravity[3];             // m/s^2
+  double* force;                 // out, per particle, Vec3
+  double* torque;
+};
+// The sums of particles [first, end).
+using SimdGather = void (*)(const GatherInput& in, long first, long end);
+
 namespace simd_sse2 {
 void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
 void half_kick(const ParticlePassInput&, long, long, double&, double*);
+void gather(const GatherInput&, long, long);
 }  // namespace simd_sse2
 namespace simd_avx2 {
 void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
 void half_kick(const ParticlePassInput&, long, long, double&, double*);
+void gather(const GatherInput&, long, long);
 }  // namespace simd_avx2
 namespace simd_avx512 {
 void kick_and_drift(const ParticlePassInput&, long, long, bool, DriftTally&);
 void half_kick(const ParticlePassInput&, long, long, double&, double*);
+void gather(const GatherInput&, long, long);
 }  // namespace simd_avx512
 
 struct SimdParticlePasses {
   SimdKickAndDrift kick_and_drift = nullptr;
   SimdHalfKick half_kick = nullptr;
+  SimdGather gather = nullptr;
   const char* name = "";  // "sse2", "avx2" or "avx512"
 };
 

@@ -4,14 +4,14 @@
 # would be a weak symbol that the linker may keep for the whole program, so that code built for
 # AVX-512 could run on a CPU without it. Each pair kernel object must define exactly three global
 # symbols, its own pair_rows, particle_records and wall_law; each particle passes object exactly
-# two, its kick_and_drift and half_kick; none any weak ones.
+# three, its kick_and_drift, half_kick and gather; none any weak ones.
 #   kernel_symbols.sh OBJECT...
 set -euo pipefail
 status=0
 for object in "$@"; do
   case "$(basename "$object")" in
     pair_kernel_simd*) entry_points=(pair_rows particle_records wall_law) ;;
-    particle_passes_simd*) entry_points=(kick_and_drift half_kick) ;;
+    particle_passes_simd*) entry_points=(kick_and_drift half_kick gather) ;;
     *) echo "$object: not a kernel object" >&2; status=1; continue ;;
   esac
   defined=$(nm --defined-only --extern-only -C "$object" | awk '{ $1 = ""; print substr($0, 2) }')
