@@ -17,6 +17,16 @@
 namespace grainlab {
 namespace {
 
+// Uniform numbers in [-1, 1) and random vectors of them times a scale.
+struct Random {
+  std::mt19937_64 engine;
+  std::uniform_real_distribution<double> u{-1.0, 1.0};
+  explicit Random(unsigned seed) : engine(seed) {}
+  double uniform() { return u(engine); }
+  Vec3 vec3(double scale) { return {scale * u(engine), scale * u(engine), scale * u(engine)}; }
+  uint64_t operator()() { return engine(); }
+};
+
 // Particles with random velocities, forces and masses (some fixed), positions since the
 // selection and the build some of which lie beyond the thresholds, and one NaN velocity.
 struct Pile {
@@ -26,11 +36,9 @@ struct Pile {
   double half_list_skin2 = 4e-10, half_skin2 = 4e-8, time_step = 8.4e-8;
 
   explicit Pile(int n, unsigned seed) {
-    std::mt19937_64 random(seed);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const auto vec = [&](double scale) {
-      return Vec3{scale * u(random), scale * u(random), scale * u(random)};
-    };
+    Random random(seed);
+    const auto u = [&] { return random.uniform(); };
+    const auto vec = [&](double scale) { return random.vec3(scale); };
     for (int i = 0; i < n; ++i) {
       position.push_back(vec(0.04));
       velocity.push_back(vec(0.3));
@@ -43,8 +51,8 @@ struct Pile {
       at_refresh.push_back(position.back() + vec(2.2e-5));
       at_build.push_back(position.back() + vec(i % 37 == 5 ? 3e-4 : 2e-5));
       const bool fixed = i % 29 == 3;
-      inverse_mass.push_back(fixed ? 0.0 : 1.0 / (1.05e-5 * (1.0 + 0.02 * u(random))));
-      inverse_inertia.push_back(fixed ? 0.0 : 1.0 / (4.2e-12 * (1.0 + 0.02 * u(random))));
+      inverse_mass.push_back(fixed ? 0.0 : 1.0 / (1.05e-5 * (1.0 + 0.02 * u())));
+      inverse_inertia.push_back(fixed ? 0.0 : 1.0 / (4.2e-12 * (1.0 + 0.02 * u())));
     }
     if (n > 20) velocity[19].y = std::nan("");
   }
@@ -130,17 +138,15 @@ struct Contacts {
   Vec3 gravity{0.3, -0.2, -9.81};
 
   explicit Contacts(int n, unsigned seed) {
-    std::mt19937_64 random(seed);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const auto vec = [&](double scale) {
-      return Vec3{scale * u(random), scale * u(random), scale * u(random)};
-    };
+    Random random(seed);
+    const auto u = [&] { return random.uniform(); };
+    const auto vec = [&](double scale) { return random.vec3(scale); };
     for (int i = 0; i < n; ++i) {
       const int entries = i + 1 < n ? static_cast<int>(random() % 6) : 0;
       for (int k = 0; k < entries; ++k) {
         partner.push_back(static_cast<uint32_t>(i + 1 + random() % std::min(40, n - 1 - i)));
         const bool touching = random() % 3 != 0;
-        result.push_back(touching ? Result{vec(0.1), vec(0.05), 2e-6 * (1.0 + u(random)), 0.1}
+        result.push_back(touching ? Result{vec(0.1), vec(0.05), 2e-6 * (1.0 + u()), 0.1}
                                   : Result{});
       }
       row_start.push_back(static_cast<uint32_t>(partner.size()));
@@ -151,8 +157,8 @@ struct Contacts {
       }
       wall_row_start.push_back(static_cast<uint32_t>(wall_force.size()));
       external_force.push_back(vec(0.01));
-      radius.push_back(1e-3 * (1.0 + 0.01 * u(random)));
-      inverse_mass.push_back(i % 23 == 4 ? 0.0 : 1.0 / (1.05e-5 * (1.0 + 0.02 * u(random))));
+      radius.push_back(1e-3 * (1.0 + 0.01 * u()));
+      inverse_mass.push_back(i % 23 == 4 ? 0.0 : 1.0 / (1.05e-5 * (1.0 + 0.02 * u())));
     }
     // the transpose, in entry order per particle
     col_start.assign(n + 1, 0);
