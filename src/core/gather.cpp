@@ -58,6 +58,7 @@ void Simulation::gather_particles(IndexBlock b) {
   ParticleStore& p = particles_;
   const PairContacts& c = pairs_;
   const WallContacts& wc = wall_contacts_;
+  // (a Vec3 array as doubles, const where the array is: Vec3 is three packed doubles)
   const auto flat = [](auto& v) { return reinterpret_cast<decltype(&v[0].x)>(v.data()); };
   const Vec3& g = settings_.gravity;
   static_assert(sizeof(PairResult) == 8 * sizeof(double));

@@ -7,7 +7,8 @@
 // (dt/2 times the inverse mass) is spread over them by a permutation, the arithmetic runs on the
 // 24 components as the scalar loop does on each, and a squared length is formed from the x, y
 // and z vectors that two permutations pick out of the three. The particles left over (fewer
-// than 8) take the scalar loop: the same arithmetic.
+// than 8) take the scalar loop: the same arithmetic. The gather keeps a particle's force and
+// torque in two vectors, to which each of its entries' 64-byte results is added whole.
 #include "core/particle_passes_simd.hpp"
 
 #include <immintrin.h>

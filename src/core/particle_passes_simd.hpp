@@ -1,9 +1,10 @@
 // The per-particle passes of velocity Verlet, vectorised across particles: the first half kick
-// and drift (with the neighbour lists' displacement tests) and the closing half kick (with the
-// speeds the health check and the one-sweep bound read). In a packing at rest these passes
-// stream every bead's arrays once per step each, and written one particle at a time they cost
-// about 130 scalar instructions a bead: a fifth of the reference shear's step and two fifths of
-// the preparation's loose stage (docs/performance.md sec. 28).
+// and drift (with the neighbour lists' displacement tests), the gather of each particle's force
+// and torque from the contact stores, and the closing half kick (with the speeds the health
+// check and the one-sweep bound read). In a packing at rest these passes stream every bead's
+// arrays once per step each, and written one particle at a time (the drift took about 130 scalar
+// instructions a bead) they were a quarter of the reference shear's step and two fifths of the
+// preparation (docs/performance.md sec. 28).
 //
 // Every value is the scalar loop's, bit for bit: each component is the same IEEE product and
 // sum (the objects are compiled with -ffp-contract=off), a squared length is summed x, y, z in

@@ -156,9 +156,9 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
 }
 
 // Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:
-// v(t + dt) = v(t + dt/2) + dt/2 F/m. Returns the largest speed squared (NaN as infinite).
-// (A NaN speed counts as infinite. next_speed2: the velocity the next step's drift will move a
-// particle at, as it will form it, unless a command changes the velocity first.)
+// v(t + dt) = v(t + dt/2) + dt/2 F/m. Returns the largest speed squared (NaN as infinite);
+// next_speed2 is raised to that of the velocity the next step's drift will move a particle at, as
+// it will form it, unless a command changes the velocity first.
 double Simulation::half_kick_particles(IndexBlock b, double* next_speed2) {
   double max_speed2 = 0.0;
   particle_passes_.half_kick(particle_pass_input(false, false), b.first, b.end, max_speed2,

@@ -219,7 +219,7 @@ class Simulation {
   // the first particle of each entry, and room for the entries the kernel hands back (first
   // touch in the step), one slot per entry.
   SimdPairKernel simd_pair_kernel_ = select_simd_pair_kernel();
-  // The first half kick and drift, and the closing half kick, across particles
+  // The first half kick and drift, the gather and the closing half kick, across particles
   SimdParticlePasses particle_passes_ = select_simd_particle_passes();
   std::vector<uint32_t> deferred_pairs_;
   std::vector<uint32_t> entry_owners_;       // per pair entry: its first particle (for the kernel)
