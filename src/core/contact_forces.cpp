@@ -184,11 +184,11 @@ SimdPairInput Simulation::kernel_input(double drift) {
   const ParticleStore& p = particles_;
   PairContacts& c = pairs_;
   const PairTable& table = table_;
-  return SimdPairInput{&p.position[0].x,
-                       &p.velocity[0].x,
-                       &p.angular_velocity[0].x,
-                       &p.force[0].x,
-                       &p.torque[0].x,
+  return SimdPairInput{components(p.position),
+                       components(p.velocity),
+                       components(p.angular_velocity),
+                       components(p.force),
+                       components(p.torque),
                        p.radius.data(),
                        p.inverse_mass.data(),
                        p.inverse_inertia.data(),
@@ -200,7 +200,7 @@ SimdPairInput Simulation::kernel_input(double drift) {
                        c.row_start.data(),
                        c.partner.data(),
                        entry_owners_.data(),
-                       &c.sliding_spring[0].x,
+                       components(c.sliding_spring),
                        &c.result[0].force_on_first.x,
                        settings_.time_step,
                        drift,

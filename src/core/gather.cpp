@@ -58,8 +58,6 @@ void Simulation::gather_particles(IndexBlock b) {
   ParticleStore& p = particles_;
   const PairContacts& c = pairs_;
   const WallContacts& wc = wall_contacts_;
-  // (a Vec3 array as doubles, const where the array is: Vec3 is three packed doubles)
-  const auto flat = [](auto& v) { return reinterpret_cast<decltype(&v[0].x)>(v.data()); };
   const Vec3& g = settings_.gravity;
   static_assert(sizeof(PairResult) == 8 * sizeof(double));
   const GatherInput in{c.row_start.data(),
@@ -67,14 +65,14 @@ void Simulation::gather_particles(IndexBlock b) {
                        c.col_pair.data(),
                        reinterpret_cast<const double*>(c.result.data()),
                        wc.row_start.data(),
-                       flat(wc.force_on_particle),
-                       flat(wc.torque_on_particle),
+                       components(wc.force_on_particle),
+                       components(wc.torque_on_particle),
                        p.radius.data(),
                        p.inverse_mass.data(),
-                       external_forces_ ? flat(p.external_force) : nullptr,
+                       external_forces_ ? components(p.external_force) : nullptr,
                        {g.x, g.y, g.z},
-                       flat(p.force),
-                       flat(p.torque)};
+                       components(p.force),
+                       components(p.torque)};
   particle_passes_.gather(in, b.first, b.end);
 }
 

@@ -77,8 +77,8 @@ class NeighborSearch {
   double half_list_skin2() const { return 0.25 * list_skin_ * list_skin_; }
   // The positions those tests measure from (per particle; where built_for the particles):
   // at the last build and at the last selection.
-  const Vec3* position_at_build() const { return position_at_build_.data(); }
-  const Vec3* position_at_refresh() const { return position_at_refresh_.data(); }
+  const std::vector<Vec3>& position_at_build() const { return position_at_build_; }
+  const std::vector<Vec3>& position_at_refresh() const { return position_at_refresh_; }
   // Whether a step must test moved_beyond_half_skin at all: false while every particle, at the
   // last selection, was so close to where the list was built that moving another half list skin
   // cannot take it beyond half the skin. Then only a step that refreshes needs the test

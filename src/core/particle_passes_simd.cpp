@@ -41,6 +41,14 @@ GRAINLAB_PASS_INLINE void add_scaled(double* a, double s, const double* b) {
   a[2] = a[2] + s * b[2];
 }
 
+// a += b and a -= b, component by component
+GRAINLAB_PASS_INLINE void add(double* a, const double* b) {
+  a[0] = a[0] + b[0], a[1] = a[1] + b[1], a[2] = a[2] + b[2];
+}
+GRAINLAB_PASS_INLINE void subtract(double* a, const double* b) {
+  a[0] = a[0] - b[0], a[1] = a[1] - b[1], a[2] = a[2] - b[2];
+}
+
 // One particle of kick_and_drift: the half kick, the drift and the tests asked for.
 template <bool Check, bool Rebuild, bool Bound>
 GRAINLAB_PASS_INLINE void drift_particle(const ParticlePassInput& in, long i, double half,
@@ -74,7 +82,7 @@ GRAINLAB_PASS_INLINE void kick_particle(const ParticlePassInput& in, long i, dou
   const double k = half * in.inverse_mass[i];
   const double* f = in.force + o;
   const double kick[3] = {k * f[0], k * f[1], k * f[2]};
-  v[0] = v[0] + kick[0], v[1] = v[1] + kick[1], v[2] = v[2] + kick[2];
+  add(v, kick);
   add_scaled(in.angular_velocity + o, half * in.inverse_inertia[i], in.torque + o);
   const double v2 = length2(v);
   max_speed2 = raise(max_speed2, v2 == v2 ? v2 : __builtin_inf());
@@ -225,14 +233,6 @@ void kick_range(const ParticlePassInput& in, long first, long end, double& max_s
   }
 #endif
   for (; i < end; ++i) kick_particle<Next>(in, i, half, max_speed2, max_next2);
-}
-
-// a += b and a -= b, component by component
-GRAINLAB_PASS_INLINE void add(double* a, const double* b) {
-  a[0] = a[0] + b[0], a[1] = a[1] + b[1], a[2] = a[2] + b[2];
-}
-GRAINLAB_PASS_INLINE void subtract(double* a, const double* b) {
-  a[0] = a[0] - b[0], a[1] = a[1] - b[1], a[2] = a[2] - b[2];
 }
 
 // The sums of one particle, as core/gather.cpp forms them: its weight, its row, its column (the

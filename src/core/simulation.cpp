@@ -168,19 +168,16 @@ double Simulation::half_kick_particles(IndexBlock b, double* next_speed2) {
 
 ParticlePassInput Simulation::particle_pass_input(bool list_test, bool rebuild_test) {
   ParticleStore& p = particles_;
-  // (Vec3 is three packed doubles: core/vec3.hpp)
-  const auto flat = [](std::vector<Vec3>& v) { return reinterpret_cast<double*>(v.data()); };
-  const auto positions = [](const Vec3* x) { return reinterpret_cast<const double*>(x); };
-  return {flat(p.position),
-          flat(p.velocity),
-          flat(p.angular_velocity),
-          flat(p.rotation),
-          flat(p.force),
-          flat(p.torque),
+  return {components(p.position),
+          components(p.velocity),
+          components(p.angular_velocity),
+          components(p.rotation),
+          components(p.force),
+          components(p.torque),
           p.inverse_mass.data(),
           p.inverse_inertia.data(),
-          list_test ? positions(neighbors_.position_at_refresh()) : nullptr,
-          rebuild_test ? positions(neighbors_.position_at_build()) : nullptr,
+          list_test ? components(neighbors_.position_at_refresh()) : nullptr,
+          rebuild_test ? components(neighbors_.position_at_build()) : nullptr,
           neighbors_.half_list_skin2(),
           neighbors_.half_skin2(),
           settings_.time_step};

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 namespace grainlab {
 
@@ -31,6 +32,15 @@ struct Vec3 {
   friend constexpr bool operator==(const Vec3&, const Vec3&) = default;
 };
 static_assert(sizeof(Vec3) == 24, "Vec3 must stay three packed doubles (SoA arrays of it are hot)");
+
+// A Vec3 array as its 3 n doubles (x, y, z of each element in turn), for the vectorised loops
+// (core/pair_kernel_simd.hpp, core/particle_passes_simd.hpp).
+inline double* components(std::vector<Vec3>& v) {
+  return reinterpret_cast<double*>(v.data());
+}
+inline const double* components(const std::vector<Vec3>& v) {
+  return reinterpret_cast<const double*>(v.data());
+}
 
 constexpr Vec3 operator+(const Vec3& a, const Vec3& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};

@@ -194,9 +194,9 @@ double Simulation::compute_wall_forces(double drift, IndexBlock block, long& han
   if (uses_pair_kernel() && simd_pair_kernel_.walls) {
     const SimdPairInput in = kernel_input(drift);
     WallContacts& c = wall_contacts_;
-    const SimdWallInput lanes{wall_lane_state_.data(),   &c.sliding_spring[0].x,
-                              &c.force_on_particle[0].x, &c.torque_on_particle[0].x,
-                              c.normal_stiffness.data(), c.normal_force.data()};
+    const SimdWallInput lanes{wall_lane_state_.data(),         components(c.sliding_spring),
+                              components(c.force_on_particle), components(c.torque_on_particle),
+                              c.normal_stiffness.data(),       c.normal_force.data()};
     return wall_forces_simd(simd_pair_kernel_, in, lanes, particles_, walls_, table_, c,
                             wall_entry_owners_, settings_.time_step, drift, block, handed_back);
   }

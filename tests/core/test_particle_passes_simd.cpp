@@ -57,17 +57,16 @@ struct Pile {
     if (n > 20) velocity[19].y = std::nan("");
   }
   ParticlePassInput input(bool list_test, bool rebuild_test) {
-    const auto flat = [](std::vector<Vec3>& v) { return &v[0].x; };
-    return {flat(position),
-            flat(velocity),
-            flat(angular_velocity),
-            flat(rotation),
-            flat(force),
-            flat(torque),
+    return {components(position),
+            components(velocity),
+            components(angular_velocity),
+            components(rotation),
+            components(force),
+            components(torque),
             inverse_mass.data(),
             inverse_inertia.data(),
-            list_test ? flat(at_refresh) : nullptr,
-            rebuild_test ? flat(at_build) : nullptr,
+            list_test ? components(at_refresh) : nullptr,
+            rebuild_test ? components(at_build) : nullptr,
             half_list_skin2,
             half_skin2,
             time_step};
@@ -169,20 +168,19 @@ struct Contacts {
     for (uint32_t e = 0; e < partner.size(); ++e) col_pair[next[partner[e]]++] = e;
   }
   GatherInput input(bool external, std::vector<Vec3>& force, std::vector<Vec3>& torque) const {
-    const auto flat = [](const std::vector<Vec3>& v) { return &v[0].x; };
     return {row_start.data(),
             col_start.data(),
             col_pair.data(),
             &result[0].force_on_first.x,
             wall_row_start.data(),
-            flat(wall_force),
-            flat(wall_torque),
+            components(wall_force),
+            components(wall_torque),
             radius.data(),
             inverse_mass.data(),
-            external ? flat(external_force) : nullptr,
+            external ? components(external_force) : nullptr,
             {gravity.x, gravity.y, gravity.z},
-            &force[0].x,
-            &torque[0].x};
+            components(force),
+            components(torque)};
   }
 };
 static_assert(sizeof(Contacts::Result) == 8 * sizeof(double));
