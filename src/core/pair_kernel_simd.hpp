@@ -110,6 +110,31 @@ struct SimdWallBatch {
 using SimdWallLaw = unsigned (*)(const SimdPairInput& pairs, const SimdWallInput& in,
                                  SimdWallBatch& batch);
 
+// Where every wall is a plane, and there are at most max_lane_planes of them (a cuboid box), the
+// kernel also finds the touching candidates itself: the gap of 8 candidates at a time, as
+// geometry/wall.hpp's wall_gap gives it for a plane (d = x - point, gap = d . normal, contact
+// normal -normal), apart ones cleared as the scalar loop clears them.
+constexpr int max_lane_planes = 8;
+struct SimdPlanes {  // per wall k < count: a point on the plane, m, and its unit normal
+  double point_x[max_lane_planes], point_y[max_lane_planes], point_z[max_lane_planes];
+  double normal_x[max_lane_planes], normal_y[max_lane_planes], normal_z[max_lane_planes];
+  int count = 0;
+};
+struct SimdWallCandidates {
+  const uint32_t* owner;  // per wall entry: its particle
+  const uint16_t* wall;   // per wall entry: its wall (< planes->count)
+  const SimdPlanes* planes;
+};
+// The wall entries [first_entry, end_entry): each apart from its plane (or a fixed particle on a
+// fixed wall) gets zero force, torque, stiffness and normal force and forgets its spring; the
+// touching ones go through the law's lanes as wall_law runs them, in entry order, except those
+// that may have begun in this step, which are written to deferred[0 .. deferred_count) for the
+// caller's scalar law (room for every entry of the range). Returns the largest overlap / r of the
+// touching ones, 0 if none. The particle records must have been written.
+using SimdPlaneWallRows = double (*)(const SimdPairInput& pairs, const SimdWallInput& in,
+                                     const SimdWallCandidates& candidates, uint32_t first_entry,
+                                     uint32_t end_entry, uint32_t* deferred, long& deferred_count);
+
 // Computes the entries of rows [first_row, end_row). Entries left to the caller (first touch in
 // this step) are written to deferred[0 .. deferred_count), which must have room for every entry
 // of those rows. Returns the largest overlap / min(r_i, r_j) among the touching contacts, 0 if
@@ -125,22 +150,29 @@ namespace simd_sse2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
+double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
+                       uint32_t, uint32_t, uint32_t*, long&);
 }  // namespace simd_sse2
 namespace simd_avx2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
+double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
+                       uint32_t, uint32_t, uint32_t*, long&);
 }  // namespace simd_avx2
 namespace simd_avx512 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
 void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
+double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
+                       uint32_t, uint32_t, uint32_t*, long&);
 }  // namespace simd_avx512
 
 struct SimdPairKernel {
   SimdPairRows rows = nullptr;  // null: the scalar loop
   SimdParticleRecords records = nullptr;
   SimdWallLaw walls = nullptr;
+  SimdPlaneWallRows plane_walls = nullptr;
   const char* name = "scalar";  // "scalar", "sse2", "avx2" or "avx512"
 };
 

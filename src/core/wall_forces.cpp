@@ -176,6 +176,23 @@ struct WallKernel {
 
 void Simulation::prepare_wall_lanes() {
   if (!uses_pair_kernel() || !simd_pair_kernel_.walls) return;
+  // Plane walls only (a cuboid box): the kernel finds the touching candidates as well.
+  const bool planes = simd_pair_kernel_.plane_walls && walls_.size() <= max_lane_planes &&
+                      std::all_of(walls_.begin(), walls_.end(),
+                                  [](const Wall& w) { return w.shape == WallShape::plane; });
+  wall_planes_ = SimdPlanes{};
+  if (planes) {
+    for (size_t k = 0; k < walls_.size(); ++k) {
+      const Wall& w = walls_[k];
+      wall_planes_.point_x[k] = w.point.x, wall_planes_.point_y[k] = w.point.y;
+      wall_planes_.point_z[k] = w.point.z;
+      wall_planes_.normal_x[k] = w.normal.x, wall_planes_.normal_y[k] = w.normal.y;
+      wall_planes_.normal_z[k] = w.normal.z;
+    }
+    wall_planes_.count = static_cast<int>(walls_.size());
+    if (deferred_walls_.size() < wall_contacts_.size())
+      deferred_walls_.resize(wall_contacts_.size());
+  }
   wall_lane_state_.resize(walls_.size());
   for (size_t k = 0; k < walls_.size(); ++k) {
     const Wall& w = walls_[k];
@@ -197,6 +214,20 @@ double Simulation::compute_wall_forces(double drift, IndexBlock block, long& han
     const SimdWallInput lanes{wall_lane_state_.data(),         components(c.sliding_spring),
                               components(c.force_on_particle), components(c.torque_on_particle),
                               c.normal_stiffness.data(),       c.normal_force.data()};
+    if (wall_planes_.count > 0) {
+      const SimdWallCandidates candidates{wall_entry_owners_.data(), c.wall.data(), &wall_planes_};
+      const uint32_t first_entry = c.row_start[block.first], end_entry = c.row_start[block.end];
+      uint32_t* deferred = deferred_walls_.data() + first_entry;
+      long deferred_count = 0;
+      const double m = simd_pair_kernel_.plane_walls(in, lanes, candidates, first_entry, end_entry,
+                                                     deferred, deferred_count);
+      // (the largest overlap counts these contacts already)
+      for (long k = 0; k < deferred_count; ++k)
+        wall_entry<false, false, false>(particles_, walls_, table_, c, settings_.time_step, drift,
+                                        wall_entry_owners_[deferred[k]], deferred[k]);
+      handed_back += deferred_count;
+      return m;
+    }
     return wall_forces_simd(simd_pair_kernel_, in, lanes, particles_, walls_, table_, c,
                             wall_entry_owners_, settings_.time_step, drift, block, handed_back);
   }

@@ -13,19 +13,12 @@
 
 #include "core/particle_passes_simd.hpp"
 #include "core/vec3.hpp"
+#include "support/random_values.hpp"
 
 namespace grainlab {
 namespace {
 
-// Uniform numbers in [-1, 1) and random vectors of them times a scale.
-struct Random {
-  std::mt19937_64 engine;
-  std::uniform_real_distribution<double> u{-1.0, 1.0};
-  explicit Random(unsigned seed) : engine(seed) {}
-  double uniform() { return u(engine); }
-  Vec3 vec3(double scale) { return {scale * u(engine), scale * u(engine), scale * u(engine)}; }
-  uint64_t operator()() { return engine(); }
-};
+using test::Random;
 
 // Particles with random velocities, forces and masses (some fixed), positions since the
 // selection and the build some of which lie beyond the thresholds, and one NaN velocity.

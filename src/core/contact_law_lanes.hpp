@@ -1,0 +1,67 @@
+// The contact law on 8 lanes, for pairs and walls alike (contact_response of
+// contact/contact_law.hpp without the optional pieces): included by the kernel objects
+// core/pair_kernel_simd.cpp and core/wall_kernel_simd.cpp, after core/simd_lanes.hpp, inside
+// their per-instruction-set namespace and an anonymous one (no include guard and no includes of
+// its own: it is a part of those files).
+#ifndef GRAINLAB_SIMD_NS
+#error "core/contact_law_lanes.hpp is part of the kernel objects"
+#endif
+
+// The constants of each lane's pair (contact/pair_params.hpp): k_n per unit r*, the damping
+// ratio, the tangential stiffness and damping ratios and the friction coefficient.
+struct LaneConstants {
+  vd stiffness_per_radius, damping_ratio, rns, rzs, friction;
+  GRAINLAB_LANES_INLINE void set(int l, const PairParams& pair) {
+    stiffness_per_radius[l] = pair.stiffness_per_radius;
+    damping_ratio[l] = pair.damping_ratio;
+    rns[l] = pair.rns;
+    rzs[l] = pair.rzs;
+    friction[l] = pair.friction;
+  }
+};
+
+// What the law gives a contact (contact_response without the optional pieces): the force on
+// body A (the particle of the row, or the particle on a wall), the torque arm n x F_t, F_n and
+// the spring after the step.
+struct LawResult {
+  V3 force_on_a, arm;
+  vd normal_force;
+  V3 spring;
+};
+// contact_response from the normal force on, for pairs and walls alike: F_n, the spring turned
+// into the tangent plane, advanced and capped. k_n, c_n: normal_params; k: the pair's constants;
+// spring: the stored history.
+GRAINLAB_LANES_INLINE LawResult contact_law(const V3& n, vd overlap, vd overlap_rate,
+                                            const V3& tangential_displacement,
+                                            const V3& tangential_velocity, vd normal_stiffness,
+                                            vd normal_damping, const LaneConstants& k, V3 spring) {
+  // normal_force: F_n = k_n U_n + c_n dU_n/dt, clamped at 0
+  const vd f = normal_stiffness * overlap + normal_damping * overlap_rate;
+  const vd normal_force = f > 0.0 ? f : vd{};
+  const vd sliding_stiffness = k.rns * normal_stiffness, sliding_damping = k.rzs * normal_damping;
+
+  // keep_in_tangent_plane: turn the spring into the current tangent plane, length kept
+  {
+    const vd length2 = dot(spring, spring);
+    const V3 in_plane = spring - dot(spring, n) * n;
+    const vd in_plane2 = dot(in_plane, in_plane);
+    const V3 scaled = lane_sqrt(length2 / in_plane2) * in_plane;
+    spring = select(length2 == 0.0, spring, select(in_plane2 > 0.0, scaled, in_plane));
+  }
+  // spring_slider: advance, respond, cap at mu F_n (slip shortens the spring)
+  spring = spring + tangential_displacement;
+  V3 tangential = sliding_stiffness * spring + sliding_damping * tangential_velocity;
+  {
+    const vd cap = k.friction * normal_force;
+    const vd magnitude2 = dot(tangential, tangential);
+    const vmask slip = magnitude2 > cap * cap;
+    const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
+    const V3 slipped_spring =
+        select(sliding_stiffness > 0.0,
+               (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
+    tangential = select(slip, capped, tangential);
+    spring = select(slip, slipped_spring, spring);
+  }
+  // the force on A and the torque arm n x F_t (each body's torque is its lever times the arm)
+  return {tangential - normal_force * n, cross(n, tangential), normal_force, spring};
+}
