@@ -79,6 +79,20 @@ void Simulation::gather_particles(IndexBlock b) {
 // Wall totals, serial in entry order (few entries; deterministic).
 void Simulation::gather_walls() {
   const WallContacts& wc = wall_contacts_;
+  if (simd_pair_kernel_.wall_totals && walls_.size() <= max_lane_walls) {
+    // one lane per wall (core/pair_kernel_simd.hpp): the same sums
+    SimdWallTotals totals;
+    simd_pair_kernel_.wall_totals(components(wc.force_on_particle), wc.normal_stiffness.data(),
+                                  wc.wall.data(), static_cast<uint32_t>(wc.size()),
+                                  static_cast<int>(walls_.size()), totals);
+    for (size_t k = 0; k < walls_.size(); ++k) {
+      Wall& w = walls_[k];
+      w.force = {totals.force_x[k], totals.force_y[k], totals.force_z[k]};
+      w.contact_stiffness = totals.stiffness[k];
+      w.contact_count = static_cast<int>(totals.count[k]);
+    }
+    return;
+  }
   for (Wall& w : walls_) {
     w.force = Vec3{};
     w.contact_stiffness = 0.0;

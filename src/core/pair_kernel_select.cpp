@@ -19,23 +19,24 @@ SimdPairKernel select_simd_pair_kernel() {
   const bool has_avx512 = __builtin_cpu_supports("avx512f");
   const char* variable = std::getenv("GRAINLAB_SIMD");
   const std::string wanted = variable && *variable ? variable : "auto";
-  if (wanted == "off") return {nullptr, nullptr, nullptr, nullptr, "scalar"};
+  if (wanted == "off") return {nullptr, nullptr, nullptr, nullptr, nullptr, "scalar"};
   if (wanted == "sse2")
-    return {&simd_sse2::pair_rows, &simd_sse2::particle_records, &simd_sse2::wall_law,
-            &simd_sse2::plane_wall_rows, "sse2"};  // every x86-64 has SSE2
+    return {&simd_sse2::pair_rows,   &simd_sse2::particle_records,
+            &simd_sse2::wall_law,    &simd_sse2::plane_wall_rows,
+            &simd_sse2::wall_totals, "sse2"};  // every x86-64 has SSE2
   if (wanted == "avx2" || (wanted == "auto" && has_avx2 && !has_avx512)) {
     if (!has_avx2) throw std::runtime_error("GRAINLAB_SIMD=avx2, but this CPU has no AVX2");
-    return {&simd_avx2::pair_rows, &simd_avx2::particle_records, &simd_avx2::wall_law,
-            &simd_avx2::plane_wall_rows, "avx2"};
+    return {&simd_avx2::pair_rows,       &simd_avx2::particle_records, &simd_avx2::wall_law,
+            &simd_avx2::plane_wall_rows, &simd_avx2::wall_totals,      "avx2"};
   }
   if (wanted == "avx512" || (wanted == "auto" && has_avx512)) {
     if (!has_avx512) throw std::runtime_error("GRAINLAB_SIMD=avx512, but this CPU has no AVX-512F");
-    return {&simd_avx512::pair_rows, &simd_avx512::particle_records, &simd_avx512::wall_law,
-            &simd_avx512::plane_wall_rows, "avx512"};
+    return {&simd_avx512::pair_rows,       &simd_avx512::particle_records, &simd_avx512::wall_law,
+            &simd_avx512::plane_wall_rows, &simd_avx512::wall_totals,      "avx512"};
   }
   if (wanted == "auto")
-    return {&simd_sse2::pair_rows, &simd_sse2::particle_records, &simd_sse2::wall_law,
-            &simd_sse2::plane_wall_rows, "sse2"};
+    return {&simd_sse2::pair_rows,       &simd_sse2::particle_records, &simd_sse2::wall_law,
+            &simd_sse2::plane_wall_rows, &simd_sse2::wall_totals,      "sse2"};
   throw std::runtime_error("GRAINLAB_SIMD=" + wanted +
                            ": expected off, sse2, avx2, avx512 or auto (the default)");
 }

@@ -110,14 +110,14 @@ struct SimdWallBatch {
 using SimdWallLaw = unsigned (*)(const SimdPairInput& pairs, const SimdWallInput& in,
                                  SimdWallBatch& batch);
 
-// Where every wall is a plane, and there are at most max_lane_planes of them (a cuboid box), the
+// Where every wall is a plane, and there are at most max_lane_walls of them (a cuboid box), the
 // kernel also finds the touching candidates itself: the gap of 8 candidates at a time, as
 // geometry/wall.hpp's wall_gap gives it for a plane (d = x - point, gap = d . normal, contact
 // normal -normal), apart ones cleared as the scalar loop clears them.
-constexpr int max_lane_planes = 8;
+constexpr int max_lane_walls = 8;
 struct SimdPlanes {  // per wall k < count: a point on the plane, m, and its unit normal
-  double point_x[max_lane_planes], point_y[max_lane_planes], point_z[max_lane_planes];
-  double normal_x[max_lane_planes], normal_y[max_lane_planes], normal_z[max_lane_planes];
+  double point_x[max_lane_walls], point_y[max_lane_walls], point_z[max_lane_walls];
+  double normal_x[max_lane_walls], normal_y[max_lane_walls], normal_z[max_lane_walls];
   int count = 0;
 };
 struct SimdWallCandidates {
@@ -125,6 +125,20 @@ struct SimdWallCandidates {
   const uint16_t* wall;   // per wall entry: its wall (< planes->count)
   const SimdPlanes* planes;
 };
+// Per wall k < count (at most max_lane_walls), what Simulation::gather_walls sums over the
+// touching wall entries (normal stiffness not 0), in entry order: the force on the wall (the
+// opposite of each force on a particle), the contacts' normal stiffnesses, and their count.
+struct SimdWallTotals {
+  double force_x[max_lane_walls], force_y[max_lane_walls], force_z[max_lane_walls];
+  double stiffness[max_lane_walls];  // N/m
+  long count[max_lane_walls];
+};
+// The totals over wall entries [0, entries), given per entry the force on the particle (x, y, z),
+// the normal stiffness and the wall (< wall_count <= max_lane_walls).
+using SimdWallTotalsOf = void (*)(const double* force_on_particle, const double* normal_stiffness,
+                                  const uint16_t* wall, uint32_t entries, int wall_count,
+                                  SimdWallTotals& totals);
+
 // The wall entries [first_entry, end_entry): each apart from its plane (or a fixed particle on a
 // fixed wall) gets zero force, torque, stiffness and normal force and forgets its spring; the
 // touching ones go through the law's lanes as wall_law runs them, in entry order, except those
@@ -152,6 +166,7 @@ void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
                        uint32_t, uint32_t, uint32_t*, long&);
+void wall_totals(const double*, const double*, const uint16_t*, uint32_t, int, SimdWallTotals&);
 }  // namespace simd_sse2
 namespace simd_avx2 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
@@ -159,6 +174,7 @@ void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
                        uint32_t, uint32_t, uint32_t*, long&);
+void wall_totals(const double*, const double*, const uint16_t*, uint32_t, int, SimdWallTotals&);
 }  // namespace simd_avx2
 namespace simd_avx512 {
 double pair_rows(const SimdPairInput&, long, long, uint32_t*, long&);
@@ -166,6 +182,7 @@ void particle_records(const SimdPairInput&, long, long);
 unsigned wall_law(const SimdPairInput&, const SimdWallInput&, SimdWallBatch&);
 double plane_wall_rows(const SimdPairInput&, const SimdWallInput&, const SimdWallCandidates&,
                        uint32_t, uint32_t, uint32_t*, long&);
+void wall_totals(const double*, const double*, const uint16_t*, uint32_t, int, SimdWallTotals&);
 }  // namespace simd_avx512
 
 struct SimdPairKernel {
@@ -173,6 +190,7 @@ struct SimdPairKernel {
   SimdParticleRecords records = nullptr;
   SimdWallLaw walls = nullptr;
   SimdPlaneWallRows plane_walls = nullptr;
+  SimdWallTotalsOf wall_totals = nullptr;
   const char* name = "scalar";  // "scalar", "sse2", "avx2" or "avx512"
 };
 

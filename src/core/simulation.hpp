@@ -134,7 +134,7 @@ class Simulation {
   // The same for the wall contacts (the kernel's wall lanes).
   long walls_handed_to_scalar_law() const { return walls_handed_to_scalar_law_; }
   // Whether the kernel found the touching wall candidates itself in the last force evaluation
-  // (every wall a plane, at most max_lane_planes; core/pair_kernel_simd.hpp, plane_wall_rows).
+  // (every wall a plane, at most max_lane_walls; core/pair_kernel_simd.hpp, plane_wall_rows).
   bool walls_in_plane_lanes() const { return wall_planes_.count > 0; }
 
  private:
@@ -229,7 +229,7 @@ class Simulation {
   std::vector<double> particle_records_;     // the kernel's per-particle velocity records
   std::vector<uint32_t> wall_entry_owners_;  // per wall entry: its particle (for the kernel)
   std::vector<SimdWallState> wall_lane_state_;  // per wall, for the kernel's wall lanes
-  // Where every wall is a plane (at most max_lane_planes): the planes as the kernel's
+  // Where every wall is a plane (at most max_lane_walls): the planes as the kernel's
   // plane_wall_rows reads them (count 0 otherwise), and room for the wall entries it hands back.
   SimdPlanes wall_planes_;
   std::vector<uint32_t> deferred_walls_;

@@ -177,7 +177,7 @@ struct WallKernel {
 void Simulation::prepare_wall_lanes() {
   if (!uses_pair_kernel() || !simd_pair_kernel_.walls) return;
   // Plane walls only (a cuboid box): the kernel finds the touching candidates as well.
-  const bool planes = simd_pair_kernel_.plane_walls && walls_.size() <= max_lane_planes &&
+  const bool planes = simd_pair_kernel_.plane_walls && walls_.size() <= max_lane_walls &&
                       std::all_of(walls_.begin(), walls_.end(),
                                   [](const Wall& w) { return w.shape == WallShape::plane; });
   wall_planes_ = SimdPlanes{};

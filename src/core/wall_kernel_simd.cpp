@@ -338,4 +338,49 @@ double plane_wall_rows(const SimdPairInput& in, const SimdWallInput& walls,
   return max_fraction;
 }
 
+void wall_totals(const double* force_on_particle, const double* normal_stiffness,
+                 const uint16_t* wall, uint32_t entries, int wall_count, SimdWallTotals& totals) {
+#if defined(__AVX512F__)
+  // One lane per wall: each entry's values broadcast and subtracted (added) in its wall's lane
+  // only, so that every lane sums its wall's entries in entry order; the chains run in registers
+  // where the scalar loop's ran through memory.
+  __m512d force_x = _mm512_setzero_pd(), force_y = force_x, force_z = force_x, stiffness = force_x;
+  __m512i count = _mm512_setzero_si512();
+  const __m512i one = _mm512_set1_epi64(1);
+  for (uint32_t e = 0; e < entries; ++e) {
+    const double k_n = normal_stiffness[e];
+    const auto lane = static_cast<__mmask8>(static_cast<unsigned>(k_n != 0.0) << wall[e]);
+    const double* f = force_on_particle + size_t{e} * 3;
+    force_x = _mm512_mask_sub_pd(force_x, lane, force_x, _mm512_set1_pd(f[0]));
+    force_y = _mm512_mask_sub_pd(force_y, lane, force_y, _mm512_set1_pd(f[1]));
+    force_z = _mm512_mask_sub_pd(force_z, lane, force_z, _mm512_set1_pd(f[2]));
+    stiffness = _mm512_mask_add_pd(stiffness, lane, stiffness, _mm512_set1_pd(k_n));
+    count = _mm512_mask_add_epi64(count, lane, count, one);
+  }
+  _mm512_storeu_pd(totals.force_x, force_x);
+  _mm512_storeu_pd(totals.force_y, force_y);
+  _mm512_storeu_pd(totals.force_z, force_z);
+  _mm512_storeu_pd(totals.stiffness, stiffness);
+  static_assert(sizeof(long) == 8 && max_lane_walls == lanes);
+  _mm512_storeu_si512(totals.count, count);
+  (void)wall_count;
+#else
+  for (int k = 0; k < wall_count; ++k) {
+    totals.force_x[k] = totals.force_y[k] = totals.force_z[k] = totals.stiffness[k] = 0.0;
+    totals.count[k] = 0;
+  }
+  for (uint32_t e = 0; e < entries; ++e) {
+    const double k_n = normal_stiffness[e];
+    if (k_n == 0.0) continue;
+    const int k = wall[e];
+    const double* f = force_on_particle + size_t{e} * 3;
+    totals.force_x[k] -= f[0];
+    totals.force_y[k] -= f[1];
+    totals.force_z[k] -= f[2];
+    totals.stiffness[k] += k_n;
+    ++totals.count[k];
+  }
+#endif
+}
+
 }  // namespace grainlab::GRAINLAB_SIMD_NS

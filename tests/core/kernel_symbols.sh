@@ -3,16 +3,16 @@
 # (src/core/CMakeLists.txt). An inline function or template instantiated in one of those objects
 # would be a weak symbol that the linker may keep for the whole program, so that code built for
 # AVX-512 could run on a CPU without it. Each pair kernel object must define exactly two global
-# symbols, its own pair_rows and particle_records; each wall kernel object two, its wall_law and
-# plane_wall_rows; each particle passes object three, its kick_and_drift, half_kick and gather;
-# none any weak ones.
+# symbols, its own pair_rows and particle_records; each wall kernel object three, its wall_law,
+# plane_wall_rows and wall_totals; each particle passes object three, its kick_and_drift,
+# half_kick and gather; none any weak ones.
 #   kernel_symbols.sh OBJECT...
 set -euo pipefail
 status=0
 for object in "$@"; do
   case "$(basename "$object")" in
     pair_kernel_simd*) entry_points=(pair_rows particle_records) ;;
-    wall_kernel_simd*) entry_points=(wall_law plane_wall_rows) ;;
+    wall_kernel_simd*) entry_points=(wall_law plane_wall_rows wall_totals) ;;
     particle_passes_simd*) entry_points=(kick_and_drift half_kick gather) ;;
     *) echo "$object: not a kernel object" >&2; status=1; continue ;;
   esac

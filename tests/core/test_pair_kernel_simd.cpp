@@ -310,6 +310,7 @@ WallPileResult run_wall_pile(const char* kernel, int threads, long steps, bool p
   }
   r.particles = sim.particles();
   r.contacts = sim.wall_contacts();
+  r.walls = sim.walls();
   omp_set_num_threads(omp_get_num_procs());
   return r;
 }
@@ -333,11 +334,16 @@ void expect_identical(const WallPileResult& a, const WallPileResult& b) {
   EXPECT_TRUE(same_bytes(a.contacts.torque_on_particle, b.contacts.torque_on_particle));
   EXPECT_TRUE(same_bytes(a.contacts.normal_stiffness, b.contacts.normal_stiffness));
   EXPECT_TRUE(same_bytes(a.contacts.normal_force, b.contacts.normal_force));
+  ASSERT_FALSE(a.walls.empty());
   ASSERT_EQ(a.walls.size(), b.walls.size());
   for (size_t k = 0; k < a.walls.size(); ++k) {
     EXPECT_EQ(0, std::memcmp(&a.walls[k].point, &b.walls[k].point, sizeof(Vec3))) << k;
     EXPECT_EQ(0, std::memcmp(&a.walls[k].velocity, &b.walls[k].velocity, sizeof(Vec3))) << k;
     EXPECT_EQ(0, std::memcmp(&a.walls[k].force, &b.walls[k].force, sizeof(Vec3))) << k;
+    EXPECT_TRUE(same_bytes(std::vector<double>{a.walls[k].contact_stiffness},
+                           std::vector<double>{b.walls[k].contact_stiffness}))
+        << k;
+    EXPECT_EQ(a.walls[k].contact_count, b.walls[k].contact_count) << k;
   }
 }
 
