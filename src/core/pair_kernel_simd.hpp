@@ -1,7 +1,9 @@
 // The particle-pair force loop for the reference contact law (sliding friction only: no rolling,
 // twisting or rolling-force pieces), vectorised across contacts: 8 contacts per lane vector,
 // the branches of the law (the clamp of F_n, the turn of the spring into the tangent plane, the
-// slip) as per-lane selects; and the same law for the particle-wall contacts (wall_law).
+// slip) as per-lane selects; and the same law for the particle-wall contacts (wall_law; for plane
+// walls also the search for the touching candidates, plane_wall_rows, and the walls' totals,
+// wall_totals: core/wall_kernel_simd.cpp).
 //
 // Each lane does exactly the arithmetic of the scalar loop (core/contact_forces.cpp with
 // contact/contact_law.hpp), in the same order, with IEEE operations only (+ - * / and a
@@ -72,9 +74,9 @@ struct SimdPairInput {
 
 // The wall contacts through the same lanes (the law of contact/contact_law.hpp with body B a
 // wall: lever 0, no spin, m* from the particle and the wall's mass). The caller finds the
-// touching candidates (the gap to a wall of any shape, core/contact_forces.cpp) and hands them
-// over in batches of 8; the lanes read the particle's velocities from its record, so the records
-// must have been written, as for the pair rows.
+// touching candidates (the gap to a wall of any shape, core/wall_forces.cpp; plane walls:
+// plane_wall_rows below) and hands them over in batches of 8; the lanes read the particle's
+// velocities from its record, so the records must have been written, as for the pair rows.
 //
 // One wall as the lanes read it, prepared before the force region from core/wall.hpp's Wall.
 struct SimdWallState {

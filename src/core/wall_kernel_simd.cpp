@@ -1,5 +1,5 @@
 // The particle-wall contacts through the kernel's lanes (core/pair_kernel_simd.hpp: wall_law,
-// plane_wall_rows). Compiled with the pair kernel, once per instruction set, with
+// plane_wall_rows, wall_totals). Compiled with the pair kernel, once per instruction set, with
 // -ffp-contract=off and internal linkage for everything but the entry points
 // (src/core/CMakeLists.txt, tests/core/kernel_symbols.sh). The lanes' arithmetic is the scalar
 // wall law's (core/wall_forces.cpp, wall_entry), statement by statement.
@@ -8,8 +8,9 @@
 // particles' positions, radii and inverse masses by gathers, the walls' points and normals by
 // permutations of one vector per value (at most 8 walls), the apart candidates cleared by masked
 // stores, the touching ones packed in entry order (compress, then a rotation onto the batch
-// being filled, all in registers) and run through the law 8 at a time. The other instruction
-// sets run the same arithmetic one candidate at a time.
+// being filled, all in registers) and run through the law 8 at a time; wall_totals keeps one
+// vector lane per wall. The other instruction sets run the same arithmetic one candidate (one
+// entry) at a time.
 #include <immintrin.h>
 
 #include <algorithm>

@@ -39,7 +39,7 @@ struct Scene {
   std::vector<int32_t> material;
   std::vector<Wall> walls;
   std::vector<SimdWallState> wall_state;
-  SimdPlanes planes;
+  SimdPlanes planes{};  // (the lanes beyond the walls read zeros)
   std::vector<uint32_t> row_start{0}, owner;
   std::vector<uint16_t> wall;
   PairParams pair_params[4];
