@@ -90,7 +90,9 @@ TEST_P(RestitutionRoundTrip, EqualSpheres) {
   const double e = GetParam();
   const CollisionResult r = collide(e, 1e-3, 1e-3, verification_dt_fraction);
   EXPECT_NEAR(r.restitution, e, 0.005 * e);
-  if (e >= 0.5) EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  if (e >= 0.5) {
+    EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  }
   // for equal spheres the expected duration is the published Eq. 11 itself
   EXPECT_NEAR(r.expected_duration, collision_duration(1e-3, glass_density, glass_E, e), 1e-15);
 }
@@ -99,14 +101,18 @@ TEST_P(RestitutionRoundTrip, UnequalSpheres) {
   const double e = GetParam();
   const CollisionResult r = collide(e, 1e-3, 0.4e-3, verification_dt_fraction);
   EXPECT_NEAR(r.restitution, e, 0.005 * e);
-  if (e >= 0.5) EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  if (e >= 0.5) {
+    EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  }
 }
 
 TEST_P(RestitutionRoundTrip, SphereOnWall) {
   const double e = GetParam();
   const CollisionResult r = collide(e, 1e-3, 0.0, verification_dt_fraction);
   EXPECT_NEAR(r.restitution, e, 0.005 * e);
-  if (e >= 0.5) EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  if (e >= 0.5) {
+    EXPECT_NEAR(r.contact_duration, r.expected_duration, 0.01 * r.expected_duration);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Published, RestitutionRoundTrip, ::testing::Values(0.1, 0.5, 0.926, 1.0));

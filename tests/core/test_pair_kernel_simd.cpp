@@ -190,7 +190,9 @@ TEST(PairKernelSimd, RowsThatPrefetchGiveTheSameBits) {
   const PileResult never = run_pile("auto", 2, pile_steps / 2, false, Prefetch::never);
   EXPECT_NE(always.kernel, "scalar");
   // 1,000 beads: a row's partners lie about 110 beads ahead, some 170 KB, inside any L2 of 256 KB
-  if (l2_cache_bytes() >= 256L << 10) EXPECT_FALSE(automatic.prefetched);
+  if (l2_cache_bytes() >= 256L << 10) {
+    EXPECT_FALSE(automatic.prefetched);
+  }
   EXPECT_TRUE(always.prefetched);
   EXPECT_FALSE(never.prefetched);
   EXPECT_GE(always.rebuilds, 1);  // the choice was made again at a rebuild, and held
