@@ -20,6 +20,38 @@ struct LaneConstants {
   }
 };
 
+// set_step_displacement with the half-step velocities, body A (the particle of the row, or the
+// particle on a wall) and body B: dv = v_B - v_A, the overlap's increment over the drift, and the
+// springs' increment. lever_shrink as the scalar law's: 1/2 for two particles, 1 on a wall (whose
+// zero spin and lever the lanes multiply and add as the scalar law does: a zero's sign counts).
+struct StepIncrement {
+  V3 dv;
+  vd overlap_increment;
+  V3 tangential_displacement;
+};
+GRAINLAB_LANES_INLINE StepIncrement step_increment(const V3& n, double drift, double lever_shrink,
+                                                   const V3& v_a, const V3& w_a, vd lever_a,
+                                                   const V3& v_b, const V3& w_b, vd lever_b) {
+  const V3 dv = v_b - v_a;
+  const vd overlap_increment = -drift * dot(dv, n);
+  const vd shift = lever_shrink * 0.5 * overlap_increment;
+  const V3 step_relative = dv - cross((lever_b + shift) * w_b + (lever_a + shift) * w_a, n);
+  return {dv, overlap_increment, drift * (step_relative - dot(step_relative, n) * n)};
+}
+// set_relative_velocity with the end-of-step estimates: the dashpots' rates, dU_n/dt and the
+// tangential velocity.
+struct ContactRates {
+  vd overlap_rate;
+  V3 tangential_velocity;
+};
+GRAINLAB_LANES_INLINE ContactRates contact_rates(const V3& n, const V3& v_a, const V3& w_a,
+                                                 vd lever_a, const V3& v_b, const V3& w_b,
+                                                 vd lever_b) {
+  const V3 relative = v_b - v_a - cross(lever_b * w_b + lever_a * w_a, n);
+  const vd normal_speed = dot(relative, n);
+  return {-normal_speed, relative - normal_speed * n};
+}
+
 // What the law gives a contact (contact_response without the optional pieces): the force on
 // body A (the particle of the row, or the particle on a wall), the torque arm n x F_t, F_n and
 // the spring after the step.

@@ -67,23 +67,16 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const LaneIndex e = lane_index(b.e);
   const RecordHead head_i = load_record_head(in.particle_record, b.i);
   const RecordHead head_j = load_record_head(in.particle_record, b.j);
-  const V3 &v_i = head_i.velocity, &v_j = head_j.velocity, &w_i = head_i.spin, &w_j = head_j.spin;
-  const V3 dv = v_j - v_i;
-  const vd overlap_increment = -drift * dot(dv, n);
-  const vd shift = 0.5 * 0.5 * overlap_increment;
-  const V3 step_relative = dv - cross((lever_j + shift) * w_j + (lever_i + shift) * w_i, n);
-  const V3 tangential_displacement = drift * (step_relative - dot(step_relative, n) * n);
+  const auto [dv, overlap_increment, tangential_displacement] = step_increment(
+      n, drift, 0.5, head_i.velocity, head_i.spin, lever_i, head_j.velocity, head_j.spin, lever_j);
 
   // set_relative_velocity with the end-of-step estimates (particle_records): the dashpots' rates
   const RecordTail tail_i = load_record_tail(in.particle_record, b.i);
   const RecordTail tail_j = load_record_tail(in.particle_record, b.j);
   const V3 v_end_i{head_i.velocity_at_end_x, head_i.velocity_at_end_y, tail_i.velocity_at_end_z};
   const V3 v_end_j{head_j.velocity_at_end_x, head_j.velocity_at_end_y, tail_j.velocity_at_end_z};
-  const V3 &w_end_i = tail_i.spin_at_end, &w_end_j = tail_j.spin_at_end;
-  const V3 relative = v_end_j - v_end_i - cross(lever_j * w_end_j + lever_i * w_end_i, n);
-  const vd normal_speed = dot(relative, n);
-  const vd overlap_rate = -normal_speed;
-  const V3 tangential_velocity = relative - normal_speed * n;
+  const auto [overlap_rate, tangential_velocity] =
+      contact_rates(n, v_end_i, tail_i.spin_at_end, lever_i, v_end_j, tail_j.spin_at_end, lever_j);
 
   // pair_entry: may this contact have begun during the step? Then the scalar law takes it.
   const V3 s = drift * dv;

@@ -77,21 +77,15 @@ unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdW
 
   // set_step_displacement (half-step velocities, lever_shrink = 1: the lever is r - U_n)
   const RecordHead head = load_record_head(in.particle_record, b.particle);
-  const V3 &v_i = head.velocity, &w_i = head.spin;
-  const V3 dv = wall_velocity - v_i;
-  const vd overlap_increment = -drift * dot(dv, n);
-  const vd shift = 1.0 * 0.5 * overlap_increment;
-  const V3 step_relative = dv - cross((no_lever + shift) * no_spin + (lever + shift) * w_i, n);
-  const V3 tangential_displacement = drift * (step_relative - dot(step_relative, n) * n);
+  const V3& v_i = head.velocity;
+  const auto [dv, overlap_increment, tangential_displacement] =
+      step_increment(n, drift, 1.0, v_i, head.spin, lever, wall_velocity, no_spin, no_lever);
 
   // set_relative_velocity with the end-of-step estimates: the dashpots' rates
   const RecordTail tail = load_record_tail(in.particle_record, b.particle);
   const V3 v_end_i{head.velocity_at_end_x, head.velocity_at_end_y, tail.velocity_at_end_z};
-  const V3 relative =
-      wall_velocity_at_end - v_end_i - cross(0.0 * no_spin + lever * tail.spin_at_end, n);
-  const vd normal_speed = dot(relative, n);
-  const vd overlap_rate = -normal_speed;
-  const V3 tangential_velocity = relative - normal_speed * n;
+  const auto [overlap_rate, tangential_velocity] =
+      contact_rates(n, v_end_i, tail.spin_at_end, lever, wall_velocity_at_end, no_spin, no_lever);
 
   // wall_forces: may this contact have begun during the step? Then the scalar law takes it.
   const V3 s = drift * (v_i - wall_velocity);
