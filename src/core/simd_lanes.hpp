@@ -150,7 +150,32 @@ GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int 
 #endif
 }
 GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
+#if defined(__AVX512F__)
+  // The inverse of store_lanes3: two lanes' (x, y, z) per vector, lane 2k in values 0..2 and lane
+  // 2k + 1 in values 4..6 (the second loaded from 4 values before its place under a mask: the
+  // values masked off are not read), then permuted into one vector per component. 8 masked loads
+  // and 7 permutations in place of three 8-value gathers (about 6 cycles each on Zen 4).
+  __m512d pair[4];
+#pragma GCC unroll 4
+  for (int k = 0; k < 4; ++k) {
+    const __m512d first = _mm512_maskz_loadu_pd(0x07, base + size_t{x.index[2 * k]} * 3);
+    const uintptr_t at = reinterpret_cast<uintptr_t>(base + size_t{x.index[2 * k + 1]} * 3) - 32;
+    pair[k] = _mm512_mask_loadu_pd(first, 0x70, reinterpret_cast<const double*>(at));
+  }
+  // x0 x1 x2 x3 y0 y1 y2 y3 from pairs 0 and 1 (z0..z3 twice), the same for lanes 4..7 from pairs
+  // 2 and 3; then the halves side by side
+  const __m512i xy = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13);
+  const __m512i zz = _mm512_setr_epi64(2, 6, 10, 14, 2, 6, 10, 14);
+  const __m512d xy_low = _mm512_permutex2var_pd(pair[0], xy, pair[1]);
+  const __m512d xy_high = _mm512_permutex2var_pd(pair[2], xy, pair[3]);
+  const __m512d z_low = _mm512_permutex2var_pd(pair[0], zz, pair[1]);
+  const __m512d z_high = _mm512_permutex2var_pd(pair[2], zz, pair[3]);
+  return {reinterpret_cast<vd>(_mm512_shuffle_f64x2(xy_low, xy_high, 0x44)),
+          reinterpret_cast<vd>(_mm512_shuffle_f64x2(xy_low, xy_high, 0xEE)),
+          reinterpret_cast<vd>(_mm512_shuffle_f64x2(z_low, z_high, 0x44))};
+#else
   return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
+#endif
 }
 GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v, int l) {
   double* out = base + size_t{index} * 3;
