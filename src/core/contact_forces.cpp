@@ -204,7 +204,8 @@ SimdPairInput Simulation::kernel_input(double drift) {
                        &c.result[0].force_on_first.x,
                        settings_.time_step,
                        drift,
-                       prefetch_ahead_};
+                       prefetch_ahead_,
+                       begun_curvature_bound(drift, next_speed2_)};
 }
 
 void Simulation::prepare_pair_forces() {

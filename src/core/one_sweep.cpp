@@ -55,7 +55,8 @@ void Simulation::choose_one_sweep() {
   one_sweep_wanted_ =
       uses_pair_kernel() && !entry_owners_.empty() &&
       (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic && pays));
-  if (!one_sweep_wanted_) list_displacement2_ = position_scale2_ = next_speed2_ = INFINITY;
+  // (next_speed2_, the bound of the next drift's speeds, stays: the kernel reads it too)
+  if (!one_sweep_wanted_) list_displacement2_ = position_scale2_ = INFINITY;
 }
 
 bool Simulation::one_sweep_possible() {

@@ -78,12 +78,23 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const auto [overlap_rate, tangential_velocity] =
       contact_rates(n, v_end_i, tail_i.spin_at_end, lever_i, v_end_j, tail_j.spin_at_end, lever_j);
 
-  // pair_entry: may this contact have begun during the step? Then the scalar law takes it.
-  const V3 s = drift * dv;
-  const vd s_n = dot(s, n);
-  const vd curvature = (dot(s, s) - s_n * s_n) / (2.0 * dist);
-  const vmask begun = overlap <= 2.0 * (overlap_increment + curvature);
+  // pair_entry: may this contact have begun during the step? Then the scalar law takes it. Its
+  // test costs 10 multiplications per lane, and multiplications bound this loop on Zen 4 (one
+  // more per batch: 0.3 % of the step; docs/performance.md sec. 30): it runs only where some lane
+  // of the batch might pass it, which a bound of its curvature term rules out for almost every
+  // batch in a dense packing (SimdPairInput::curvature_bound; a lane with a NaN runs it).
   const bool drifted = drift > 0.0;
+  vmask begun{};
+  if (drifted) {
+    const vd growth_bound = overlap_increment + in.curvature_bound * inverse_dist;
+    const unsigned used = (1u << b.count) - 1u;
+    if ((~lane_bits(overlap > growth_bound + growth_bound) & used) != 0) {
+      const V3 s = drift * dv;
+      const vd s_n = dot(s, n);
+      const vd curvature = (dot(s, s) - s_n * s_n) / (2.0 * dist);
+      begun = overlap <= 2.0 * (overlap_increment + curvature);
+    }
+  }
 
   // the pair's constants
   LaneConstants k;

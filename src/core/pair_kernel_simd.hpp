@@ -70,7 +70,23 @@ struct SimdPairInput {
   // Whether the rows ask the caches ahead for the entries' results, springs and partners'
   // records (prefetch_pays); the results are the same either way.
   bool prefetch_ahead;
+  // m: a bound B with |s_t|^2 / (2 D) <= B / D for every pair, where s is the pair's relative
+  // drift over the step (begun_curvature_bound); infinite where none is known. Lanes whose overlap
+  // exceeds twice the normal increment plus B / D cannot have begun in the step, and their batch
+  // skips pair_entry's test (the same decisions: the test runs wherever a lane might pass it).
+  double curvature_bound = __builtin_inf();
 };
+
+// The bound of SimdPairInput::curvature_bound from the largest speed squared any particle drifts
+// at in the step (formed as the drift forms the velocities; infinite where unknown):
+// |s| = drift |v_j - v_i| <= 2 drift V, so |s|^2 / (2 D) <= 2 drift^2 V^2 / D. Widened by 1e-12
+// (relative) for the rounding of V^2, of the bound's own product and of the lanes' s, |s|^2 and
+// quotient (about 20 units of 1.1e-16), and at least 1e-300 m^2 where those round to subnormals.
+inline double begun_curvature_bound(double drift, double next_speed2) {
+  const double bound = 2.0 * drift * drift * next_speed2 * (1.0 + 1e-12);
+  if (bound != bound) return __builtin_inf();  // (no bound)
+  return bound > 1e-300 ? bound : 1e-300;
+}
 
 // The wall contacts through the same lanes (the law of contact/contact_law.hpp with body B a
 // wall: lever 0, no spin, m* from the particle and the wall's mass). The caller finds the

@@ -227,7 +227,8 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   particle_chunks_.plan(partition_, chunk);
   double max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
-  const bool next_bound = close_step && one_sweep_wanted_;  // (for one_sweep_possible)
+  // (for one_sweep_possible and the kernel's test for contacts begun in the next step)
+  const bool next_bound = close_step && (one_sweep_wanted_ || uses_pair_kernel());
   // One region, up to three stages, a barrier after each but the last: the pair rows and wall
   // contacts read every particle's record, the gather reads every entry's result. The records
   // stage runs only where kick_and_drift has not written them (after a rebuild, on a fresh

@@ -182,6 +182,81 @@ TEST(PairKernelSimd, OneMaterialMatchesTheScalarLawOnEveryInstructionSet) {
                            sse2.particles.size() * sizeof(Vec3)));
 }
 
+namespace {
+
+struct SidewaysResult {
+  ParticleStore particles;
+  std::string kernel;
+  std::vector<Vec3> springs;
+  std::vector<PairResult> results;
+  long handed_back = 0;       // in the step where the pairs close
+  double curvature_term = 0;  // |s|^2 / (2 D) of the pairs, m
+};
+
+// 64 pairs of beads far apart from each other. In each the second bead slides past the first,
+// sideways (along y), at 1 m/s: at step `closing` the pair's centres line up along x at a distance
+// of r_i + r_j - delta, with s = dt v perpendicular to the line. The overlap grew only by the
+// curvature term of pair_entry's test, |s|^2 / (2 D), about 2.4e-12 m: delta from 0.1 to 3.2
+// times it, so that the test finds about the first half begun in the step (first touch) and the
+// rest older. The kernel must hand the first half back to the scalar law: a bound of the
+// curvature term that fell short would let its lanes take them.
+SidewaysResult run_sideways_pairs(const char* kernel, long closing) {
+  KernelChoice choice(kernel);
+  omp_set_num_threads(1);
+  constexpr double radius = 1.0e-3, speed = 1.0;
+  const SimulationSettings settings = settings_for(radius, 0.5, 0.1, {0.0, 0.0, 0.0});
+  const double dt = settings.time_step, reach = 2.0 * radius;
+  const double curvature_term = (dt * speed) * (dt * speed) / (2.0 * reach);
+  ParticleStore p;
+  for (int k = 0; k < 64; ++k) {
+    const Vec3 first{0.0, 0.0, 10.0 * reach * k};
+    const double delta = (0.1 + 0.05 * k) * curvature_term;
+    const Vec3 second =
+        first + Vec3{reach - delta, -speed * dt * static_cast<double>(closing), 0.0};
+    p.add(static_cast<uint32_t>(2 * k), 0, radius, glass_density, first, {}, {}, false);
+    p.add(static_cast<uint32_t>(2 * k + 1), 0, radius, glass_density, second, {0.0, speed, 0.0}, {},
+          false);
+  }
+  Simulation sim(std::move(p), {}, mixed_table(), settings);
+  SidewaysResult r;
+  r.kernel = sim.pair_kernel_name();
+  r.curvature_term = curvature_term;
+  for (long s = 0; s < closing; ++s) sim.step();
+  r.handed_back = sim.pairs_handed_to_scalar_law();
+  r.particles = sim.particles();
+  r.springs = sim.pair_contacts().sliding_spring;
+  r.results = sim.pair_contacts().result;
+  omp_set_num_threads(omp_get_num_procs());
+  return r;
+}
+
+}  // namespace
+
+// The kernel's bound of the curvature term (begun_curvature_bound, from the speed bound that the
+// half kick forms) lets a batch skip pair_entry's test for contacts begun in the step; here the
+// curvature term alone decides that test, and the kernel must make the scalar law's decisions.
+TEST(PairKernelSimd, PairsClosedBySidewaysMotionAreHandedBackAsTheScalarLawDecides) {
+  constexpr long closing = 20;  // steps: the half kicks have formed a bound of the speeds by then
+  const SidewaysResult scalar = run_sideways_pairs("off", closing);
+  EXPECT_GT(scalar.curvature_term, 1e-12);
+  for (const char* isa : {"sse2", "avx2", "avx512"}) {
+    if (!cpu_has(isa)) continue;
+    const SidewaysResult r = run_sideways_pairs(isa, closing);
+    SCOPED_TRACE(r.kernel);
+    EXPECT_EQ(r.kernel, isa);
+    // about half of the 64 pairs began in the step, and only those were handed back
+    EXPECT_GT(r.handed_back, 16);
+    EXPECT_LT(r.handed_back, 48);
+    expect_same_particle_bits(scalar.particles, r.particles);
+    ASSERT_EQ(scalar.springs.size(), r.springs.size());
+    EXPECT_EQ(
+        0, std::memcmp(scalar.springs.data(), r.springs.data(), r.springs.size() * sizeof(Vec3)));
+    ASSERT_EQ(scalar.results.size(), r.results.size());
+    EXPECT_EQ(0, std::memcmp(scalar.results.data(), r.results.data(),
+                             r.results.size() * sizeof(PairResult)));
+  }
+}
+
 TEST(PairKernelSimd, RowsThatPrefetchGiveTheSameBits) {
   // The pile is small, so the rows prefetch only when told to; the results must not change.
   using Prefetch = SimulationSettings::Prefetch;
