@@ -170,9 +170,11 @@ GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
   const __m512d xy_high = _mm512_permutex2var_pd(pair[2], xy, pair[3]);
   const __m512d z_low = _mm512_permutex2var_pd(pair[0], zz, pair[1]);
   const __m512d z_high = _mm512_permutex2var_pd(pair[2], zz, pair[3]);
-  return {reinterpret_cast<vd>(_mm512_shuffle_f64x2(xy_low, xy_high, 0x44)),
-          reinterpret_cast<vd>(_mm512_shuffle_f64x2(xy_low, xy_high, 0xEE)),
-          reinterpret_cast<vd>(_mm512_shuffle_f64x2(z_low, z_high, 0x44))};
+  const vd xy0 = reinterpret_cast<vd>(xy_low), xy1 = reinterpret_cast<vd>(xy_high);
+  const vd z0 = reinterpret_cast<vd>(z_low), z1 = reinterpret_cast<vd>(z_high);
+  return {__builtin_shufflevector(xy0, xy1, 0, 1, 2, 3, 8, 9, 10, 11),
+          __builtin_shufflevector(xy0, xy1, 4, 5, 6, 7, 12, 13, 14, 15),
+          __builtin_shufflevector(z0, z1, 0, 1, 2, 3, 8, 9, 10, 11)};
 #else
   return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
 #endif
