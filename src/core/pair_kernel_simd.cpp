@@ -154,6 +154,7 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
   deferred_count = 0;
   double max_fraction = 0.0;
   Batch b;
+  int count = 0;
   // local copies: the compiler cannot tell that the stores below leave `in` unchanged
   const double* const position = in.position;
   const double* const radius = in.radius;
@@ -206,18 +207,21 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     const vd zero{};
     __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
     store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
-    const int l = b.count;
+    // (the count in a register: the batch's own count is set only for the lanes)
+    const int l = count;
     b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
     b.ri[l] = r_i, b.rj[l] = r_j;
     b.i[l] = i, b.j[l] = j, b.e[l] = e;
-    b.count += touching;
-    if (b.count == lanes) {
+    count += touching;
+    if (count == lanes) {
+      b.count = lanes;
       const double m = process_batch(in, b, deferred, deferred_count);
       if (max_fraction < m) max_fraction = m;
-      b.count = 0;
+      count = 0;
     }
   }
-  if (b.count > 0) {
+  if (count > 0) {
+    b.count = count;
     const double m = process_batch(in, b, deferred, deferred_count);
     if (max_fraction < m) max_fraction = m;
   }
