@@ -230,7 +230,10 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
 
 }  // namespace
 
-void particle_records(const SimdPairInput& in, long first, long end) {
+void particle_records(const SimdPairInput& given, long first, long end) {
+  // (a local copy: the compiler cannot tell that the records' stores leave `given` as it is, and
+  // would load its pointers again for every particle)
+  const SimdPairInput in = given;
   // velocity_at_step_end / spin_at_step_end: v(t + dt/2) + dt/2 F(t)/m, the same operations
   const double half_dt = 0.5 * in.time_step;
 #if defined(__AVX512F__)

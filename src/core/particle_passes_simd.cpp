@@ -163,7 +163,8 @@ GRAINLAB_PASS_INLINE double raise(double largest, v8 lanes) {
 #endif
 
 template <bool Check, bool Rebuild, bool Bound>
-void drift_range(const ParticlePassInput& in, long first, long end, DriftTally& tally) {
+void drift_range(const ParticlePassInput& given, long first, long end, DriftTally& tally) {
+  const ParticlePassInput in = given;  // (a local copy: see gather)
   const double half = 0.5 * in.time_step;
   long i = first;
 #if defined(__AVX512F__)
@@ -207,8 +208,9 @@ void drift_range(const ParticlePassInput& in, long first, long end, DriftTally& 
 }
 
 template <bool Next>
-void kick_range(const ParticlePassInput& in, long first, long end, double& max_speed2,
+void kick_range(const ParticlePassInput& given, long first, long end, double& max_speed2,
                 double& max_next2) {
+  const ParticlePassInput in = given;  // (a local copy: see gather)
   const double half = 0.5 * in.time_step;
   long i = first;
 #if defined(__AVX512F__)
@@ -331,7 +333,10 @@ void half_kick(const ParticlePassInput& in, long first, long end, double& max_sp
 void gather(const GatherInput& in, long first, long end) {
 #if defined(__AVX512F__)
   const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
-  for (long i = first; i < end; ++i) gather_particle_lanes(in, i, gravity);
+  // (a local copy: the compiler cannot tell that the force and torque stores leave `in` as it
+  // is, and would load its pointers again for every particle)
+  const GatherInput local = in;
+  for (long i = first; i < end; ++i) gather_particle_lanes(local, i, gravity);
 #else
   for (long i = first; i < end; ++i) gather_particle(in, i);
 #endif
