@@ -42,7 +42,7 @@ inline double verlet_skin(double diameter) {
 // The active list's skin as a fraction of the Verlet skin (docs/performance.md sec. 23): thin
 // enough that the list holds little more than the touching pairs, thick enough that refreshes
 // stay rare next to the steps.
-constexpr double default_list_skin_fraction = 0.1;
+constexpr double default_list_skin_fraction = 0.05;
 
 class NeighborSearch {
  public:
