@@ -4,13 +4,14 @@
 
 #include "contact/pair_table.hpp"
 #include "lab/flat_throw.hpp"
+#include "support/scenes.hpp"
 
 using namespace grainlab;
 
 namespace {
 FlatThrowResult throw_bead(double e, bool onto_bead, double friction = 0.2) {
   PairTable table({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"target", {}, {}, {}}});
-  PairProperties p{.restitution = e, .friction = friction};
+  PairProperties p = test::pair_properties(e, friction);
   table.set(0, 0, p);
   table.set(0, 1, p);
   FlatThrowSettings s;

@@ -14,6 +14,7 @@
 #include "lab/plane_strain.hpp"
 #include "lab/specimen.hpp"
 #include "measure/specimen_state.hpp"
+#include "support/scenes.hpp"
 
 using namespace grainlab;
 
@@ -21,10 +22,10 @@ namespace {
 PairTable reference_pairs() {
   PairTable t({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"rubber_membrane", {}, {}, {}},
                Material{"porous_stone", {}, {}, {}}});
-  t.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
+  t.set(0, 0, test::pair_properties(0.926, 0.16));
   // Frictionless (lubricated) walls: the only lateral load is the membrane's.
-  t.set(0, 1, PairProperties{.restitution = 0.58, .friction = 0.0});
-  t.set(0, 2, PairProperties{.restitution = 0.73, .friction = 0.0});
+  t.set(0, 1, test::pair_properties(0.58, 0.0));
+  t.set(0, 2, test::pair_properties(0.73, 0.0));
   return t;
 }
 }  // namespace

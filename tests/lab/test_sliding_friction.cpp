@@ -3,13 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "lab/sliding_friction.hpp"
+#include "support/scenes.hpp"
 
 using namespace grainlab;
 
 TEST(SlidingFriction, SliderOnFixedBeadsGivesInputFriction) {
   PairTable table({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"rubber", {}, {}, {}}});
-  table.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
-  table.set(0, 1, PairProperties{.restitution = 0.58, .friction = 0.21});
+  table.set(0, 0, test::pair_properties(0.926, 0.16));
+  table.set(0, 1, test::pair_properties(0.58, 0.21));
   SlidingFrictionSettings s;
   s.slider_material = "rubber";
   s.bed_length = 0.024;

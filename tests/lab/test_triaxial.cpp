@@ -12,6 +12,7 @@
 #include "lab/specimen.hpp"
 #include "measure/boundary.hpp"
 #include "measure/specimen_state.hpp"
+#include "support/scenes.hpp"
 
 using namespace grainlab;
 
@@ -28,9 +29,9 @@ SpecimenSettings small_specimen() {
 PairTable reference_pairs() {
   PairTable t({Material{"glass", 46.2e9, 0.245, 2500.0}, Material{"rubber_membrane", {}, {}, {}},
                Material{"porous_stone", {}, {}, {}}});
-  t.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
-  t.set(0, 1, PairProperties{.restitution = 0.58, .friction = 0.21});
-  t.set(0, 2, PairProperties{.restitution = 0.73, .friction = 0.18});
+  t.set(0, 0, test::pair_properties(0.926, 0.16));
+  t.set(0, 1, test::pair_properties(0.58, 0.21));
+  t.set(0, 2, test::pair_properties(0.73, 0.18));
   return t;
 }
 }  // namespace
@@ -90,9 +91,10 @@ TEST(SpecimenPreparation, FrictionlessWallsLeaveTheSpecimenIsotropic) {
     double lo = 1e300, hi = -1e300;
     for (double sigma : *s.love_weber_diagonal) lo = std::min(lo, sigma), hi = std::max(hi, sigma);
     spread[walls] = (hi - lo) / settings.confining_stress;
-    if (walls == 0)
+    if (walls == 0) {
       for (double sigma : *s.love_weber_diagonal)
         EXPECT_NEAR(sigma / settings.confining_stress, 1.0, 0.01);
+    }
   }
   EXPECT_GT(spread[1], 2.0 * spread[0]);
 }
@@ -109,9 +111,9 @@ TEST(SpecimenPreparation, ReferenceCompactionRestitutionKeepsTheTestsStep) {
   // every bead contact (with beads and walls) at restitution min(e, measured), as while compacting
   const auto stable_at = [&](double e) {
     PairTable t = measured;
-    t.set(0, 0, PairProperties{.restitution = std::min(e, 0.926), .friction = 0.16});
-    t.set(0, 1, PairProperties{.restitution = std::min(e, 0.58), .friction = 0.21});
-    t.set(0, 2, PairProperties{.restitution = std::min(e, 0.73), .friction = 0.18});
+    t.set(0, 0, test::pair_properties(std::min(e, 0.926), 0.16));
+    t.set(0, 1, test::pair_properties(std::min(e, 0.58), 0.21));
+    t.set(0, 2, test::pair_properties(std::min(e, 0.73), 0.18));
     return stable_time_step(step, t, 0, r_min).time_step >= step;
   };
   EXPECT_TRUE(stable_at(0.4));

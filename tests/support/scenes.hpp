@@ -19,6 +19,14 @@ inline double sphere_mass(double radius, double density = glass_density) {
   return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
 }
 
+// A pair's restitution and friction, the other properties at their defaults.
+inline PairProperties pair_properties(double restitution, double friction) {
+  PairProperties p;
+  p.restitution = restitution;
+  p.friction = friction;
+  return p;
+}
+
 // Material 0: "glass" particles; material 1: "wall" (no E or density of its own).
 inline PairTable two_material_table(double restitution, double friction, double arf = 0.0) {
   PairTable t({Material{"glass", glass_E, 0.245, glass_density}, Material{"wall", {}, {}, {}}});
