@@ -212,7 +212,7 @@ TEST_F(Cli, MaterialsOutRefusesASceneFile) {
 
 TEST_F(Cli, Plots) {
   if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
-  for (const std::string args :
+  for (const std::string& args :
        {"restitution " + examples + "/throws.csv --plot r.png",
         "friction " + examples + "/slide.csv --plot f.png",
         "restitution --trajectory " + examples + "/track_rubber_membrane.csv --plot t.png"}) {

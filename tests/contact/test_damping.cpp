@@ -32,7 +32,9 @@ TEST(Damping, InversionReturnsInputRestitution) {
   for (double e : {0.05, 0.1, 0.3, 0.5, 0.58, 0.73, 0.926, 0.94, 0.999, 1.0}) {
     const double z = damping_ratio_for_restitution(e);
     EXPECT_NEAR(clamped_restitution(z), e, 1e-12) << "e = " << e;
-    if (e < 1.0) EXPECT_GT(z, textbook_damping_ratio(e)) << "clamp needs more damping";
+    if (e < 1.0) {
+      EXPECT_GT(z, textbook_damping_ratio(e)) << "clamp needs more damping";
+    }
   }
 }
 

@@ -5,12 +5,13 @@
 
 #include "contact/pair_table.hpp"
 #include "contact/time_step.hpp"
+#include "support/scenes.hpp"
 
 using namespace grainlab;
 
 TEST(PairTable, ReferenceGlassStiffnessAndCollisionDuration) {
   PairTable t({Material{"glass", 46.2e9, 0.245, 2500.0}});
-  t.set(0, 0, PairProperties{.restitution = 0.926, .friction = 0.16});
+  t.set(0, 0, test::pair_properties(0.926, 0.16));
   // k_n = pi E r*, r* = 0.5 mm for two 2 mm beads: 7.257e7 N/m
   EXPECT_NEAR(t(0, 0).stiffness_per_radius * 0.5e-3, 7.2571e7, 0.0001e7);
   // Eq. 11 for the reference beads: 8.44e-7 s
@@ -31,12 +32,12 @@ TEST(PairTable, CollisionDurationEqualsHalfDampedPeriod) {
 TEST(PairTable, WallMaterialUsesParticleModulusAndSeriesCombination) {
   PairTable t({Material{"a", 40e9, {}, 2500.0}, Material{"b", 10e9, {}, 2500.0},
                Material{"wall", {}, {}, {}}});
-  t.set(0, 1, PairProperties{.restitution = 0.9, .friction = 0.2});
-  t.set(0, 2, PairProperties{.restitution = 0.9, .friction = 0.2});
+  t.set(0, 1, test::pair_properties(0.9, 0.2));
+  t.set(0, 2, test::pair_properties(0.9, 0.2));
   EXPECT_DOUBLE_EQ(t(0, 1).youngs_modulus, 2 * 40e9 * 10e9 / 50e9);  // springs in series
   EXPECT_DOUBLE_EQ(t(1, 0).youngs_modulus, t(0, 1).youngs_modulus);  // symmetric
   EXPECT_DOUBLE_EQ(t(0, 2).youngs_modulus, 40e9);
-  PairProperties own{0.9, 0.2};
+  PairProperties own = test::pair_properties(0.9, 0.2);
   own.youngs_modulus = 70e9;
   t.set(1, 2, own);
   EXPECT_DOUBLE_EQ(t(1, 2).youngs_modulus, 70e9);
@@ -44,21 +45,18 @@ TEST(PairTable, WallMaterialUsesParticleModulusAndSeriesCombination) {
 
 TEST(PairTable, RejectsNonPhysicalValues) {
   PairTable t({Material{"a", 40e9, {}, 2500.0}, Material{"wall", {}, {}, {}}});
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.0, .friction = 0.2}),
-               std::invalid_argument);
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 1.01, .friction = 0.2}),
-               std::invalid_argument);
-  EXPECT_THROW(t.set(0, 0, PairProperties{.restitution = 0.5, .friction = -0.1}),
-               std::invalid_argument);
-  EXPECT_THROW(t.set(1, 1, PairProperties{.restitution = 0.5, .friction = 0.1}),
+  EXPECT_THROW(t.set(0, 0, test::pair_properties(0.0, 0.2)), std::invalid_argument);
+  EXPECT_THROW(t.set(0, 0, test::pair_properties(1.01, 0.2)), std::invalid_argument);
+  EXPECT_THROW(t.set(0, 0, test::pair_properties(0.5, -0.1)), std::invalid_argument);
+  EXPECT_THROW(t.set(1, 1, test::pair_properties(0.5, 0.1)),
                std::invalid_argument);  // no E at all
 }
 
 TEST(PairTable, OptionalPiecesSwitchOnlyWhenUsed) {
   PairTable t({Material{"a", 40e9, {}, 2500.0}});
-  t.set(0, 0, PairProperties{.restitution = 0.9, .friction = 0.2});
+  t.set(0, 0, test::pair_properties(0.9, 0.2));
   EXPECT_FALSE(t.pieces().rolling);
-  PairProperties p{.restitution = 0.9, .friction = 0.2};
+  PairProperties p = test::pair_properties(0.9, 0.2);
   p.arf = 0.1;
   t.set(0, 0, p);
   EXPECT_TRUE(t.pieces().rolling);
