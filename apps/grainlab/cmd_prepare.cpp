@@ -6,6 +6,7 @@
 #include "command.hpp"
 #include "io/config_error.hpp"
 #include "io/interrupt.hpp"
+#include "io/team_follower.hpp"
 #include "lab/lab_test.hpp"
 
 namespace grainlab::app {
@@ -27,6 +28,8 @@ Command add_prepare_command(CLI::App& app) {
   return {sub, [options, config] {
             try {
               if (options->threads > 0) omp_set_num_threads(options->threads);
+              // (without --threads, the steps' team follows the CPUs other processes leave free)
+              const auto follower = follow_free_cpus(options->threads > 0, options->quiet);
               run_prepare(*config, *options);
             } catch (const ConfigError& e) {
               fmt::print(stderr, "grainlab: error: {}\n", e.what());

@@ -8,6 +8,7 @@
 #include "io/config_error.hpp"
 #include "io/interrupt.hpp"
 #include "io/scene_run.hpp"
+#include "io/team_follower.hpp"
 #include "io/toml_reader.hpp"
 #include "lab/lab_test.hpp"
 
@@ -41,6 +42,8 @@ Command add_run_command(CLI::App& app) {
             }
             try {
               if (options->threads > 0) omp_set_num_threads(options->threads);
+              // (without --threads, the steps' team follows the CPUs other processes leave free)
+              const auto follower = follow_free_cpus(options->threads > 0, options->quiet);
               if (!resume->empty()) {
                 options->out_dir = *resume;
                 if (is_scene_checkpoint(options->out_dir + "/checkpoint.bin"))

@@ -1,6 +1,5 @@
 // grainlab: a virtual granular laboratory (DEM). See README.md and docs/.
 #include <fmt/format.h>
-#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "command.hpp"
 #include "grainlab/version.hpp"
 #include "io/output_files.hpp"
+#include "io/team_follower.hpp"
 #include "io/wait_policy.hpp"
 
 namespace {
@@ -25,38 +25,30 @@ namespace {
 // other, and a run takes 2.4 times as long (docs/performance.md sec. 15). Sleeping at once
 // (OMP_WAIT_POLICY=passive) is safe but pays a wake-up at every barrier (up to 1.2x slower on
 // an idle machine). 1,000 rounds keep the idle speed within the noise, but a run still took
-// 2.25x its idle time with a busy loop on the other core (sec. 18). So `run` and `prepare`
-// measure first, for 0.1 s, how many CPUs other processes keep busy, and let the threads sleep
-// at once when they would not each find a free one (io/wait_policy.hpp). libgomp reads its
+// 2.25x its idle time with a busy loop on the other core (sec. 18). So `run` and `prepare` with a
+// thread count (--threads, OMP_NUM_THREADS) measure first, for 0.1 s, how many CPUs other
+// processes keep busy, and let the threads sleep at once when they would not each find a free one
+// (io/wait_policy.hpp). Without one, their team follows the free CPUs while they run
+// (io/team_follower.hpp, sec. 31) and its threads spin a while. libgomp reads its
 // settings when it is loaded, before main, so the setting takes a restart of the program with it
 // in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept, and threads bound
 // by OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY get no restart (it would inherit the first
 // thread's single CPU).
 constexpr const char* barrier_spin_rounds = "1000";
 
-// (an unreadable /proc/stat reads as "", which parse_cpu_times refuses)
-std::optional<grainlab::CpuTimes> read_cpu_times(const std::vector<int>& cpus) {
-  return grainlab::parse_cpu_times(grainlab::read_file("/proc/stat"), cpus);
-}
-
-// The CPUs this process may run on (its affinity mask; in a container or under taskset not all
-// of the machine's), as OpenMP counts them for its default thread count.
-std::vector<int> usable_cpus() {
-  std::vector<int> cpus;
-  cpu_set_t set;
-  if (sched_getaffinity(0, sizeof set, &set) == 0)
-    for (int k = 0; k < CPU_SETSIZE; ++k)
-      if (CPU_ISSET(k, &set)) cpus.push_back(k);
-  return cpus;
-}
-
-// The OpenMP threads a run will start: --threads N, else OMP_NUM_THREADS, else one per CPU.
-int requested_threads(int argc, char** argv, int cpus) {
+// The thread count of --threads N, or 0 when the command line gives none.
+int threads_option(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) {
     const std::string_view a = argv[k];
     if (a == "--threads" && k + 1 < argc) return std::max(1, std::atoi(argv[k + 1]));
     if (a.starts_with("--threads=")) return std::max(1, std::atoi(argv[k] + 10));
   }
+  return 0;
+}
+
+// The OpenMP threads a run will start: --threads N, else OMP_NUM_THREADS, else one per CPU.
+int requested_threads(int argc, char** argv, int cpus) {
+  if (const int n = threads_option(argc, argv); n > 0) return n;
   if (const char* n = std::getenv("OMP_NUM_THREADS")) return std::max(1, std::atoi(n));
   return cpus;
 }
@@ -77,7 +69,9 @@ void choose_barrier_waiting(int argc, char** argv) {
     return;
   }
   WaitPolicy policy = WaitPolicy::bounded_spin;
-  if (long_run) {
+  // A team that follows the free CPUs (io/team_follower.hpp) leaves a CPU that another process
+  // holds within two seconds: its threads spin a while, the fastest on free CPUs.
+  if (long_run && !team_follows_free_cpus(threads_option(argc, argv) > 0)) {
     const std::vector<int> usable = usable_cpus();
     const int cpus = usable.empty() ? static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)))
                                     : static_cast<int>(usable.size());

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/team_limit.hpp"
+
 namespace grainlab {
 
 Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTable table,
@@ -36,6 +38,7 @@ void Simulation::refresh_active_pairs() {
 }
 
 void Simulation::step() {
+  follow_step_team_limit();  // (the team may change between steps: core/team_limit.hpp)
   for (StepListener* l : listeners_) l->before_step(*this);
   drift_walls();
   if (one_sweep_possible()) {

@@ -1,6 +1,7 @@
 #include "io/wait_policy.hpp"
 
 #include <fmt/format.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <cctype>
@@ -8,6 +9,8 @@
 #include <sstream>
 #include <string_view>
 #include <vector>
+
+#include "io/output_files.hpp"
 
 namespace grainlab {
 
@@ -61,6 +64,20 @@ std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
   }
   if (found != (cpus.empty() ? 1 : cpus.size())) return std::nullopt;
   return sum;
+}
+
+std::vector<int> usable_cpus() {
+  std::vector<int> cpus;
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0)
+    for (int k = 0; k < CPU_SETSIZE; ++k)
+      if (CPU_ISSET(k, &set)) cpus.push_back(k);
+  return cpus;
+}
+
+// (an unreadable /proc/stat reads as "", which parse_cpu_times refuses)
+std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus) {
+  return parse_cpu_times(read_file("/proc/stat"), cpus);
 }
 
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus) {

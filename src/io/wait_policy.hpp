@@ -29,6 +29,14 @@ struct CpuTimes {
 std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
                                         const std::vector<int>& cpus = {});
 
+// The CPUs this process may run on (its affinity mask; in a container or under taskset not all
+// of the machine's), sorted, as OpenMP counts them for its default thread count; empty where the
+// mask cannot be read.
+std::vector<int> usable_cpus();
+
+// parse_cpu_times of this machine's /proc/stat now; nullopt where it cannot be read.
+std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus);
+
 // How many of `cpus` CPUs were busy on average between two readings of the same set.
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus);
 

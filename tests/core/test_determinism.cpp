@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/random_insertion.hpp"
+#include "core/team_limit.hpp"
 #include "support/scenes.hpp"
 
 using namespace grainlab;
@@ -50,16 +51,24 @@ void expect_same_bits(const ParticleStore& x, const ParticleStore& y) {
                            x.size() * sizeof(Vec3)));
 }
 
-ParticleStore run_pile(int threads) {
+// `change_team_every` > 0: the steps' team goes 1, 2, 3, 1, ... every that many steps
+// (step_team_limit, core/team_limit.hpp), as when a run follows the free CPUs.
+ParticleStore run_pile(int threads, int change_team_every = 0) {
   omp_set_num_threads(threads);
   Simulation sim = random_box(1000, 11, true);  // above parallel_threshold
   long contacts = 0;
+  std::set<int> teams;
   for (int s = 0; s < 20000; ++s) {
+    if (change_team_every > 0 && s % change_team_every == 0)
+      step_team_limit = 1 + (s / change_team_every) % 3;
     sim.step();
+    teams.insert(omp_get_max_threads());
     contacts += sim.touching_pair_count();
   }
+  step_team_limit = 0;
   EXPECT_GT(contacts, 3000) << "the run must exercise many contacts";
   EXPECT_GT(sim.rebuild_count(), 2);
+  EXPECT_EQ(teams.size(), change_team_every > 0 ? 3u : 1u) << "the teams the steps ran with";
   return sim.particles();
 }
 }  // namespace
@@ -67,6 +76,16 @@ ParticleStore run_pile(int threads) {
 TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalStates) {
   const ParticleStore a = run_pile(1);
   const ParticleStore b = run_pile(2);
+  omp_set_num_threads(omp_get_num_procs());
+  expect_same_bits(a, b);
+}
+
+// A run without --threads changes its team between steps as other processes take and leave CPUs
+// (io/team_follower.hpp): with teams of 1, 2 and 3 threads in turn, every 97 steps (rebuilds and
+// refreshes fall on steps of each team), it ends in the bits of one thread.
+TEST(Determinism, ATeamThatChangesBetweenStepsGivesTheBitsOfOneThread) {
+  const ParticleStore a = run_pile(1);
+  const ParticleStore b = run_pile(1, 97);
   omp_set_num_threads(omp_get_num_procs());
   expect_same_bits(a, b);
 }
