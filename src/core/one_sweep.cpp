@@ -44,9 +44,9 @@
 namespace grainlab {
 
 // The most threads a step runs as one sweep with automatically. Measured on 1 and 2 threads
-// (the 2-core development VM); on 16 cores, where the stages' chunk sharing is worth 0.74 -> 0.83
-// of parallel efficiency (docs/performance.md sec. 16) and the sweep's blocks are fixed, it is
-// not measured yet.
+// (the 2-core development VM). On a 16-core Xeon the sweep ran at 0.84 to 0.97 of the stages'
+// speed at 8 and 16 threads, in every workload from 11.6k to 745k beads (docs/performance.md
+// sec. 31): there the stages share their chunks, and the sweep's blocks are fixed.
 constexpr int one_sweep_automatic_threads = 2;
 
 void Simulation::choose_one_sweep() {
