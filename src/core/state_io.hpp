@@ -36,7 +36,9 @@ class StateWriter {
 
 class StateReader {
  public:
-  explicit StateReader(std::string bytes) : bytes_(std::move(bytes)) {}
+  // (the bytes are held as a vector: over a std::string, GCC 12 warned of reads past a short
+  // string's inline buffer wherever a reader was inlined, -Warray-bounds)
+  explicit StateReader(const std::string& bytes) : bytes_(bytes.begin(), bytes.end()) {}
   template <class T>
   T value() {
     static_assert(std::is_trivially_copyable_v<T>);
@@ -75,7 +77,7 @@ class StateReader {
     at_ += n;
     return p;
   }
-  std::string bytes_;
+  std::vector<char> bytes_;
   size_t at_ = 0;
 };
 
