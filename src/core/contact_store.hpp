@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/uninitialized_allocator.hpp"
 #include "core/vec3.hpp"
 
 namespace grainlab {
@@ -56,8 +57,9 @@ struct PairContacts {
   std::vector<Vec3> rolling_angle;
   std::vector<double> twisting_angle;
   std::vector<Vec3> rolling_force_displacement;
-  // results of the last force computation
-  std::vector<PairResult> result;
+  // results of the last force computation (sized without zeroing: NeighborSearch::allocate_results
+  // zeroes them in parallel)
+  std::vector<PairResult, UninitializedAllocator<PairResult>> result;
   std::vector<Vec3> moment;  // N m, rolling + twisting moment on the first body (the second gets
                              // the opposite); empty unless a pair has those pieces
 

@@ -18,8 +18,8 @@ class StateWriter {
     static_assert(std::is_trivially_copyable_v<T>);
     bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
   }
-  template <class T>
-  void array(const std::vector<T>& v) {
+  template <class T, class A>
+  void array(const std::vector<T, A>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     value<uint64_t>(v.size());
     bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
@@ -46,8 +46,8 @@ class StateReader {
     std::memcpy(&v, take(sizeof(T)), sizeof(T));
     return v;
   }
-  template <class T>
-  void array(std::vector<T>& v) {
+  template <class T, class A>
+  void array(std::vector<T, A>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     const uint64_t n = value<uint64_t>();
     if (n > (bytes_.size() - at_) / (sizeof(T) ? sizeof(T) : 1))

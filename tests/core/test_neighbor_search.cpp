@@ -204,10 +204,17 @@ TEST(NeighborSearch, RefreshFollowsMotionAndKeepsHistories) {
     x += (0.49 * skin / std::sqrt(3.0)) * d;
   }
   EXPECT_FALSE(search.needs_rebuild(p, {}));
+  // Results of a last force computation everywhere: the new list's results start at zero
+  // (allocated without zeroing and zeroed by the threads, core/uninitialized_allocator.hpp)
+  for (PairResult& r : active.result) r = {{1, 2, 3}, {4, 5, 6}, 7, 8};
   const long before = search.refresh_count();
   search.refresh(p, active, {});
   EXPECT_EQ(search.refresh_count(), before + 1);
   EXPECT_TRUE(rows_are_ordered_subsets(search, active, p.size()));
+  ASSERT_EQ(active.result.size(), active.size());
+  for (const PairResult& r : active.result)
+    ASSERT_TRUE(r.force_on_first == Vec3{} && r.torque_arm == Vec3{} && r.overlap == 0.0 &&
+                r.normal_force == 0.0);
   // Every pair now within the list skin is active; so is every tagged pair, with its tag, even
   // where the motion took it beyond the list skin; every other entry starts without a history.
   const auto within = pairs_within(p, list_skin),

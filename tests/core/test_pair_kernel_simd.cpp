@@ -67,7 +67,7 @@ struct PileResult {
 void keep_final_state(const Simulation& sim, PileResult& r) {
   r.particles = sim.particles();
   r.springs = sim.pair_contacts().sliding_spring;
-  r.results = sim.pair_contacts().result;
+  r.results.assign(sim.pair_contacts().result.begin(), sim.pair_contacts().result.end());
 }
 
 // one_material: every bead of glass_a (the kernel then broadcasts the one pair's constants instead
