@@ -15,18 +15,11 @@ namespace grainlab {
 
 double other_busy_cpus(const CpuTimes& before, const CpuTimes& after, int cpus, double own_cpu_s,
                        double ticks_per_s) {
-  const double elapsed_ticks = (after.total - before.total) / std::max(cpus, 1);
-  if (!(elapsed_ticks > 0.0)) return 0.0;
-  const double others = (after.busy - before.busy - own_cpu_s * ticks_per_s) / elapsed_ticks;
-  return std::clamp(others, 0.0, static_cast<double>(cpus));
-}
-
-int team_for_free_cpus(int most, int cpus, double others_busy) {
-  // (the rule of choose_wait_policy: t threads find a free CPU each when t <= free + 0.5)
-  const double free_cpus = cpus - others_busy;
-  int team = std::max(most, 1);
-  while (team > 1 && free_cpus < team - 0.5) --team;
-  return team;
+  // (the elapsed time: the set's total jiffies over its CPUs)
+  const double elapsed_s = (after.total - before.total) / std::max(cpus, 1) / ticks_per_s;
+  if (!(elapsed_s > 0.0)) return 0.0;
+  return std::clamp(busy_cpus_between(before, after, cpus) - own_cpu_s / elapsed_s, 0.0,
+                    static_cast<double>(cpus));
 }
 
 bool TeamChoice::observe(int wanted) {

@@ -5,7 +5,7 @@
 // only while those CPUs are free: every second a background thread reads /proc/stat for those
 // CPUs and this process's own CPU time (getrusage), and from the two how many CPUs other
 // processes kept busy. The steps then take the most threads, up to one per CPU, that each find a
-// free CPU (within half a CPU, the rule of choose_wait_policy), through step_team_limit
+// free CPU (team_for_free_cpus, io/wait_policy.hpp: within half a CPU), through step_team_limit
 // (core/team_limit.hpp). Why: a thread that shares its core with another busy process is
 // preempted for whole time slices while the other threads wait for it at every barrier. On the
 // 2-core development VM with a busy loop on one core, 2 threads ran `dense-11k` at half the
@@ -29,13 +29,9 @@ namespace grainlab {
 // How many CPUs processes other than this one kept busy between two readings of /proc/stat for
 // `cpus` CPUs: the busy jiffies less `own_cpu_s` (this process's CPU time between the readings,
 // s) at `ticks_per_s` jiffies per second, over the elapsed time (the total jiffies over `cpus`).
-// In [0, cpus]; 0 when no time passed.
+// In [0, cpus]; 0 when no time passed. (busy_cpus_between less this process's share)
 double other_busy_cpus(const CpuTimes& before, const CpuTimes& after, int cpus, double own_cpu_s,
                        double ticks_per_s);
-
-// The most threads, from 1 to `most`, that each find a free CPU among `cpus` CPUs of which other
-// processes keep `others_busy` busy (within half a CPU).
-int team_for_free_cpus(int most, int cpus, double others_busy);
 
 // The team from successive readings: it starts at `most` and changes to a wanted team when two
 // readings in a row want it.

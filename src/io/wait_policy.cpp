@@ -86,9 +86,16 @@ double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus
   return std::clamp((after.busy - before.busy) / total, 0.0, 1.0) * cpus;
 }
 
-WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
+int team_for_free_cpus(int most, int cpus, double busy_cpus) {
   const double free_cpus = cpus - busy_cpus;
-  return threads > 1 && free_cpus < threads - 0.5 ? WaitPolicy::passive : WaitPolicy::bounded_spin;
+  int team = std::max(most, 1);
+  while (team > 1 && free_cpus < team - 0.5) --team;
+  return team;
+}
+
+WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
+  return team_for_free_cpus(threads, cpus, busy_cpus) < threads ? WaitPolicy::passive
+                                                                : WaitPolicy::bounded_spin;
 }
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,

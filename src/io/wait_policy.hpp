@@ -40,9 +40,14 @@ std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus);
 // How many of `cpus` CPUs were busy on average between two readings of the same set.
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus);
 
+// The most threads, from 1 to `most`, that each find a free CPU among `cpus` CPUs of which other
+// processes keep `busy_cpus` busy: t threads do when t <= cpus - busy_cpus + 0.5 (within half a
+// CPU). The team a run without --threads takes (io/team_follower.hpp).
+int team_for_free_cpus(int most, int cpus, double busy_cpus);
+
 // The wait policy for `threads` OpenMP threads on `cpus` CPUs of which `busy_cpus` are already
-// busy with other work: spin a while when the threads find a free CPU each (within half a
-// CPU), sleep at once otherwise.
+// busy with other work: spin a while when the threads find a free CPU each
+// (team_for_free_cpus), sleep at once otherwise.
 enum class WaitPolicy { bounded_spin, passive };
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
 
