@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   std::string lammps_data, tile, specimen_csv;
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false;
+  int refresh_cost = 0;
   std::string one_sweep = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
@@ -142,6 +143,11 @@ int main(int argc, char** argv) {
   app.add_flag("--rebuild-peak", rebuild_peak,
                "after the timed steps, force one neighbour-list rebuild (one wall moved out by a "
                "skin) and print the peak RSS with it");
+  app.add_option("--refresh-cost", refresh_cost,
+                 "after the timed steps, time this many selections of the active pair list at "
+                 "the same positions (the refresh a step makes when a bead has moved half the "
+                 "list skin) and print the time of one")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
                  "results)")
@@ -224,6 +230,20 @@ int main(int argc, char** argv) {
           "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f} "
           "{:>7.3f}\n",
           t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps);
+      if (refresh_cost > 0) {
+        // (after the figures above: a refresh at the same positions selects the same list,
+        // with the same histories, so it changes no result)
+        const auto refresh_start = std::chrono::steady_clock::now();
+        for (int k = 0; k < refresh_cost; ++k) sim.refresh_pair_list();
+        const double refresh_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - refresh_start).count();
+        const double refresh_rss = peak_rss_mb();
+        fmt::print(
+            "        list refresh: {:.2f} ms each ({} refreshes, {} entries); peak RSS with them "
+            "{:.1f} MB, {:.0f} B per particle\n",
+            1e3 * refresh_seconds / refresh_cost, refresh_cost, sim.pair_contacts().size(),
+            refresh_rss, refresh_rss * 1048576.0 / n);
+      }
       if (rebuild_peak) {
         // The timed run rebuilds rarely or never; a real run rebuilds every few hundred steps,
         // and the rebuild holds the old contact store while it builds the new one. Moving one

@@ -1,6 +1,8 @@
 // The active pair list (core/neighbor_search.hpp): the candidates within the list skin, selected
 // at each rebuild and refreshed between rebuilds, with the entries' histories carried by
 // candidate; and the watch that tells the drift whether it must test for a rebuild.
+#include <omp.h>
+
 #include <algorithm>
 #include <numeric>
 
@@ -9,15 +11,82 @@
 namespace grainlab {
 namespace {
 
+// Below this many rows a pass of the selection runs on one thread.
+constexpr long parallel_rows = 4 * parallel_threshold;
+
+// row_start[1..n] from counts to their running sums (row_start[0] = 0): each thread sums its
+// own part of the rows, then adds the totals of the parts before it. Integer sums: the same for
+// any thread count.
+void sum_counts(std::vector<uint32_t>& row_start) {
+  const long n = static_cast<long>(row_start.size());
+  const int team = n > parallel_rows ? omp_get_max_threads() : 1;
+  std::vector<uint32_t> part_total(static_cast<size_t>(team) + 1, 0);
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const long first = n * t / threads, end = n * (t + 1) / threads;
+    uint32_t sum = 0;
+    for (long k = first; k < end; ++k) sum = row_start[k] += sum;
+    part_total[t + 1] = sum;
+#pragma omp barrier
+    uint32_t before = 0;
+    for (long s = 0; s <= t; ++s) before += part_total[s];
+    if (before != 0)
+      for (long k = first; k < end; ++k) row_start[k] += before;
+  }
+}
+
+// A vector about to be written whole: sized to n, its old values left where its storage
+// suffices (the list's arrays are written anew at every selection; zeroing them first would
+// be a serial pass over each), freed and made anew with a sixteenth to spare where it does not.
+template <class Vector>
+void size_to_overwrite(Vector& v, size_t n) {
+  if (n > v.capacity()) {
+    v = Vector{};
+    v.reserve(n + n / 16);
+  }
+  v.resize(n);
+}
+
 // The transpose of a pair list (col_start, col_pair), in increasing entry order (fixed,
-// thread-independent).
-void index_columns(PairContacts& pairs, size_t particles) {
-  pairs.col_start.assign(particles + 1, 0);
-  for (uint32_t j : pairs.partner) ++pairs.col_start[j + 1];
-  std::partial_sum(pairs.col_start.begin(), pairs.col_start.end(), pairs.col_start.begin());
-  pairs.col_pair.resize(pairs.partner.size());
-  std::vector<uint32_t> fill(pairs.col_start.begin(), pairs.col_start.end() - 1);
-  for (uint32_t e = 0; e < pairs.partner.size(); ++e) pairs.col_pair[fill[pairs.partner[e]]++] = e;
+// thread-independent). A partner j of row i lies after it (i < j <= i + farthest): the thread
+// that owns the columns of particles [first, end) finds their entries in rows
+// [first - farthest, end), in entry order, and writes only its own columns. Where the partners
+// reach far (farthest above a quarter of the rows) one thread does it all.
+void index_columns(PairContacts& pairs, long particles, long farthest) {
+  size_to_overwrite(pairs.col_start, static_cast<size_t>(particles) + 1);
+  size_to_overwrite(pairs.col_pair, pairs.partner.size());
+  const uint32_t* row_start = pairs.row_start.data();
+  const uint32_t* partner = pairs.partner.data();
+  uint32_t* col_start = pairs.col_start.data();
+  uint32_t* col_pair = pairs.col_pair.data();
+  const long n = particles;
+  const int team = n > parallel_rows && 4 * farthest < n ? omp_get_max_threads() : 1;
+  // Calls visit(entry, column) for the entries of the calling thread's columns, in entry order.
+  const auto for_each_own_entry = [&](auto&& visit) {
+    const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const uint32_t first = static_cast<uint32_t>(n * t / threads);
+    const uint32_t end = static_cast<uint32_t>(n * (t + 1) / threads);
+    const uint32_t scan_end = row_start[end];
+    for (uint32_t e = row_start[std::max(0L, static_cast<long>(first) - farthest)]; e < scan_end;
+         ++e)
+      if (partner[e] >= first && partner[e] < end) visit(e, partner[e]);
+  };
+  col_start[0] = 0;
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+    for (long j = n * t / threads; j < n * (t + 1) / threads; ++j) col_start[j + 1] = 0;
+    for_each_own_entry([&](uint32_t, uint32_t j) { ++col_start[j + 1]; });
+  }
+  sum_counts(pairs.col_start);
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const long first = n * t / threads, end = n * (t + 1) / threads;
+    std::vector<uint32_t> next(col_start + first, col_start + end);  // each column's next place
+    for_each_own_entry([&](uint32_t e, uint32_t j) { col_pair[next[j - first]++] = e; });
+  }
 }
 
 }  // namespace
@@ -44,57 +113,80 @@ void NeighborSearch::watch_for_rebuild() {
 }
 
 void NeighborSearch::select_active(const ParticleStore& p, const PairContacts& old,
-                                   const std::vector<uint32_t>& old_entry, PairContacts& active,
+                                   std::span<const uint32_t> old_entry, PairContacts& active,
                                    ContactPieces pieces) {
   const long n = static_cast<long>(p.size());
-  // Calls emit(candidate, old entry or -1) for the candidates of row i that are kept, in order:
-  // within the list skin now, or holding a history (a contact that has just come apart: its
+  // Calls decide(candidate, kept) for the candidates of row i, in order. One is kept when it
+  // lies within the list skin now, or holds a history (a contact that has just come apart: its
   // entry forgets the history at the next force evaluation, as it would in the full list).
-  auto for_each_kept = [&](long i, auto&& emit) {
+  auto for_each_candidate = [&](long i, auto&& decide) {
     const Vec3 xi = p.position[i];
     const double ri = p.radius[i];
     for (uint32_t c = candidate_row_start_[i]; c < candidate_row_start_[i + 1]; ++c) {
-      const long from = old_entry[c] == no_old_entry ? -1 : static_cast<long>(old_entry[c]);
+      const uint32_t from = old_entry[c];
       const uint32_t j = candidate_partner_[c];
       const double reach = ri + p.radius[j] + list_skin_;
-      if (norm2(p.position[j] - xi) < reach * reach || (from >= 0 && entry_has_history(old, from)))
-        emit(c, from);
+      // (the distance's test as a value, not a branch: about a third of a dense packing's
+      // candidates fail it, unpredictably; few of those hold a history)
+      bool keep = norm2(p.position[j] - xi) < reach * reach;
+      if (!keep && from != no_old_entry) keep = entry_has_history(old, from);
+      decide(c, keep);
     }
   };
-  active.row_start.assign(static_cast<size_t>(n) + 1, 0);
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  // Which candidates are kept, one flag each (not a character type, whose stores would make the
+  // compiler load every array's address again), and how many per row; then the rows' starts.
+  enum class Kept : uint8_t { no, yes };
+  std::vector<Kept, UninitializedAllocator<Kept>> kept(candidate_partner_.size());
+  size_to_overwrite(active.row_start, static_cast<size_t>(n) + 1);
+  active.row_start[0] = 0;
+#pragma omp parallel for schedule(static) if (n > parallel_rows)
   for (long i = 0; i < n; ++i) {
     uint32_t count = 0;
-    for_each_kept(i, [&](uint32_t, long) { ++count; });
+    for_each_candidate(i, [&](uint32_t c, bool keep) {
+      kept[c] = keep ? Kept::yes : Kept::no;
+      count += keep;
+    });
     active.row_start[i + 1] = count;
   }
-  std::partial_sum(active.row_start.begin(), active.row_start.end(), active.row_start.begin());
+  sum_counts(active.row_start);
   const size_t m = active.row_start[n];
-  std::vector<uint32_t> candidate_of(m);
-  active.partner.resize(m);
-  active.sliding_spring.assign(m, Vec3{});
+  // The entries: their candidates, partners and histories (zero where the old list had none),
+  // each row written by the thread that counted it. The old selection's candidates are read
+  // only through old_entry: their array is written anew here.
+  std::vector<uint32_t> candidate_of = std::move(active_candidate_);
+  size_to_overwrite(candidate_of, m);
+  size_to_overwrite(active.partner, m);
+  active.sliding_spring.resize(m);
   active.rolling_angle.assign(pieces.rolling ? m : 0, Vec3{});
   active.twisting_angle.assign(pieces.twisting ? m : 0, 0.0);
   active.rolling_force_displacement.assign(pieces.rolling_force ? m : 0, Vec3{});
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  long farthest = 0;  // the farthest a partner lies after its row (index_columns)
+#pragma omp parallel for schedule(static) reduction(max : farthest) if (n > parallel_rows)
   for (long i = 0; i < n; ++i) {
     uint32_t e = active.row_start[i];
-    for_each_kept(i, [&](uint32_t c, long from) {
+    for (uint32_t c = candidate_row_start_[i]; c < candidate_row_start_[i + 1]; ++c) {
+      if (kept[c] == Kept::no) continue;
+      const uint32_t j = candidate_partner_[c];
+      const uint32_t from = old_entry[c];
       candidate_of[e] = c;
-      active.partner[e] = candidate_partner_[c];
-      if (from >= 0) {
-        active.sliding_spring[e] = old.sliding_spring[from];
+      active.partner[e] = j;
+      farthest = std::max(farthest, static_cast<long>(j) - i);
+      active.sliding_spring[e] = from != no_old_entry ? old.sliding_spring[from] : Vec3{};
+      if (from != no_old_entry) {
         if (pieces.rolling) active.rolling_angle[e] = old.rolling_angle[from];
         if (pieces.twisting) active.twisting_angle[e] = old.twisting_angle[from];
         if (pieces.rolling_force)
           active.rolling_force_displacement[e] = old.rolling_force_displacement[from];
       }
       ++e;
-    });
+    }
   }
-  index_columns(active, static_cast<size_t>(n));
+  kept = {};
+  index_columns(active, n, farthest);
   active_candidate_ = std::move(candidate_of);
-  position_at_refresh_ = p.position;
+  position_at_refresh_.resize(p.size());
+#pragma omp parallel for schedule(static) if (n > parallel_rows)
+  for (long i = 0; i < n; ++i) position_at_refresh_[i] = p.position[i];
   ++refresh_count_;
 }
 
@@ -102,8 +194,7 @@ void NeighborSearch::allocate_results(PairContacts& pairs, ContactPieces pieces)
   const size_t m = pairs.size();
   // Sized without zeroing, then zeroed by every thread, each its own part (page faults
   // included): serially it had taken a third of a refresh (core/uninitialized_allocator.hpp).
-  pairs.result.clear();
-  pairs.result.resize(m);
+  size_to_overwrite(pairs.result, m);
   const long entries = static_cast<long>(m);
 #pragma omp parallel for schedule(static) if (entries > parallel_threshold)
   for (long e = 0; e < entries; ++e) pairs.result[e] = PairResult{};
@@ -111,14 +202,24 @@ void NeighborSearch::allocate_results(PairContacts& pairs, ContactPieces pieces)
 }
 
 void NeighborSearch::refresh(const ParticleStore& p, PairContacts& pairs, ContactPieces pieces) {
-  // Only the histories of the old list are read: the rest is freed before the new list is
-  // built, so that a refresh does not hold two whole lists.
-  std::vector<uint32_t> old_entry(candidate_partner_.size(), no_old_entry);
-  for (size_t k = 0; k < active_candidate_.size(); ++k)
-    old_entry[active_candidate_[k]] = static_cast<uint32_t>(k);
-  const PairContacts old = histories_of(std::move(pairs));
-  pairs = PairContacts{};
+  // Each candidate's entry in the old list, row by row: the old entries of row i are those of
+  // its candidates that were selected, in order.
+  const long n = static_cast<long>(p.size());
+  std::vector<uint32_t, UninitializedAllocator<uint32_t>> old_entry(candidate_partner_.size());
+#pragma omp parallel for schedule(static) if (n > parallel_rows)
+  for (long i = 0; i < n; ++i) {
+    for (uint32_t c = candidate_row_start_[i]; c < candidate_row_start_[i + 1]; ++c)
+      old_entry[c] = no_old_entry;
+    for (uint32_t e = pairs.row_start[i]; e < pairs.row_start[i + 1]; ++e)
+      old_entry[active_candidate_[e]] = e;
+  }
+  // Only the histories of the old list are read. Its other arrays are written anew in place
+  // (the results zeroed), so that a refresh allocates nothing the list already holds and never
+  // holds two whole lists.
+  PairContacts old = histories_of(std::move(pairs));
+  pairs.moment.clear();
   select_active(p, old, old_entry, pairs, pieces);
+  old = PairContacts{}, old_entry = {};  // before the results are zeroed
   allocate_results(pairs, pieces);
   watch_for_rebuild();
 }

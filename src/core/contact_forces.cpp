@@ -153,7 +153,7 @@ bool Simulation::uses_pair_kernel() const {
          pairs_.size() < kernel_index_limit && particles_.size() < kernel_index_limit;
 }
 
-void Simulation::index_entry_owners() {
+void Simulation::index_entry_owners(bool walls_changed) {
   const PairContacts& c = pairs_;
   if (!uses_pair_kernel()) {  // only the kernel reads them
     one_sweep_wanted_ = false;
@@ -163,8 +163,9 @@ void Simulation::index_entry_owners() {
     return;
   }
   particle_records_.resize(particles_.size() * particle_record_size);
-  entry_owners_ = row_of_each_entry(c.row_start);
-  wall_entry_owners_ = row_of_each_entry(wall_contacts_.row_start);
+  index_rows_of_entries(c.row_start, entry_owners_);
+  if (walls_changed || wall_entry_owners_.size() != wall_contacts_.size())
+    index_rows_of_entries(wall_contacts_.row_start, wall_entry_owners_);
   // the rows prefetch, and a step may run as one sweep, where the partners lie far ahead
   // (core/pair_kernel_simd.hpp)
   using Prefetch = SimulationSettings::Prefetch;

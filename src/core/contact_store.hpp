@@ -18,11 +18,13 @@
 
 namespace grainlab {
 
-// For a CSR row index (row_start, N + 1 values): the row each entry lies in, i.e. its particle.
+// For a CSR row index (row_start, N + 1 values): the row each entry lies in, i.e. its particle,
+// written into `row` (its storage kept where it suffices), the rows shared among the threads
+// (core/contact_store.cpp).
+void index_rows_of_entries(const std::vector<uint32_t>& row_start, std::vector<uint32_t>& row);
 inline std::vector<uint32_t> row_of_each_entry(const std::vector<uint32_t>& row_start) {
-  std::vector<uint32_t> row(row_start.empty() ? 0 : row_start.back());
-  for (size_t i = 0; i + 1 < row_start.size(); ++i)
-    for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e) row[e] = static_cast<uint32_t>(i);
+  std::vector<uint32_t> row;
+  index_rows_of_entries(row_start, row);
   return row;
 }
 
@@ -52,8 +54,8 @@ struct PairContacts {
   std::vector<uint32_t> partner;    // per entry: second particle
   std::vector<uint32_t> col_start;  // N + 1
   std::vector<uint32_t> col_pair;   // entries where the particle is second
-  // history (m, rad)
-  std::vector<Vec3> sliding_spring;
+  // history (m, rad); the sliding springs sized without zeroing (select_active writes each)
+  std::vector<Vec3, UninitializedAllocator<Vec3>> sliding_spring;
   std::vector<Vec3> rolling_angle;
   std::vector<double> twisting_angle;
   std::vector<Vec3> rolling_force_displacement;

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -123,7 +124,7 @@ class NeighborSearch {
   // old_entry[c]: candidate c's entry in `old`, which holds histories, or no_old_entry.
   static constexpr uint32_t no_old_entry = UINT32_MAX;
   void select_active(const ParticleStore& particles, const PairContacts& old,
-                     const std::vector<uint32_t>& old_entry, PairContacts& active,
+                     std::span<const uint32_t> old_entry, PairContacts& active,
                      ContactPieces pieces);
   static void allocate_results(PairContacts& pairs, ContactPieces pieces);
 

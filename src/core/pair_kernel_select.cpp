@@ -67,20 +67,24 @@ bool one_sweep_pays(double partner_reach, long max_partner_ahead, long l2_cache_
 }
 
 PartnerReach partner_reach(const uint32_t* row_start, const uint32_t* partner, size_t rows) {
-  PartnerReach reach;
-  double sum = 0.0;
-  size_t counted = 0;
-  for (size_t i = 0; i < rows; ++i) {
+  // (integer sums and maxima: the same for any thread count)
+  long sum = 0, counted = 0, farthest_ahead = 0;
+  const long n = static_cast<long>(rows);
+#pragma omp parallel for schedule(static) reduction(+ : sum, counted) \
+    reduction(max : farthest_ahead) if (n > 4096)
+  for (long i = 0; i < n; ++i) {
     if (row_start[i] == row_start[i + 1]) continue;
     uint32_t farthest = 0;
     for (uint32_t e = row_start[i]; e < row_start[i + 1]; ++e)
       farthest = std::max(farthest, partner[e]);
-    const long ahead = farthest > i ? static_cast<long>(farthest - i) : 0;
-    sum += static_cast<double>(ahead);
-    reach.farthest = std::max(reach.farthest, ahead);
+    const long ahead = farthest > i ? static_cast<long>(farthest) - i : 0;
+    sum += ahead;
+    farthest_ahead = std::max(farthest_ahead, ahead);
     ++counted;
   }
-  reach.mean = counted > 0 ? sum / static_cast<double>(counted) : 0.0;
+  PartnerReach reach;
+  reach.farthest = farthest_ahead;
+  reach.mean = counted > 0 ? static_cast<double>(sum) / static_cast<double>(counted) : 0.0;
   return reach;
 }
 

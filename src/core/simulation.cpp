@@ -28,13 +28,13 @@ Simulation::Simulation(ParticleStore particles, std::vector<Wall> walls, PairTab
 void Simulation::rebuild_neighbors() {
   entry_owners_ = {}, wall_entry_owners_ = {};  // made anew below: not held through the rebuild
   neighbors_.rebuild(particles_, walls_, pairs_, wall_contacts_, pieces_);
-  index_entry_owners();
+  index_entry_owners(true);
 }
 
 void Simulation::refresh_active_pairs() {
-  entry_owners_ = {};  // made anew below
+  // (entry_owners_ is written anew in place; the wall contacts stay as they are)
   neighbors_.refresh(particles_, pairs_, pieces_);
-  index_entry_owners();
+  index_entry_owners(false);
 }
 
 void Simulation::step() {

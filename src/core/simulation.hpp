@@ -112,6 +112,13 @@ class Simulation {
   bool rows_prefetch() const { return prefetch_ahead_; }
   // Selections of the active pair list: one per rebuild, and the refreshes between them.
   long list_refresh_count() const { return neighbors_.refresh_count(); }
+  // Selects the active pair list again now, from the same candidates, as a step does when a
+  // particle has moved half the list skin (for benchmarks of the refresh; the results do not
+  // change: core/neighbor_search.hpp).
+  void refresh_pair_list() {
+    refresh_active_pairs();
+    list_displacement2_ = 0.0;  // selected where they are now
+  }
   // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the
   // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays) on up to 2
   // threads (where it was measured), always where it can, or never (in stages). The results are
@@ -187,8 +194,9 @@ class Simulation {
   // Whether the pair forces go through the vectorised kernel (set by the table's pieces, the CPU
   // and the list's size; fixed between rebuilds).
   bool uses_pair_kernel() const;
-  // entry_owners_, room for particle_records_ and one_material_, when the kernel runs
-  void index_entry_owners();
+  // entry_owners_, room for particle_records_ and one_material_, when the kernel runs; the
+  // wall entries' owners too where the wall contacts changed (a rebuild, a restore)
+  void index_entry_owners(bool walls_changed);
   void check_health() const;
   void check_restored_state() const;  // after loading a checkpoint; std::runtime_error
   const char* step_key() const;       // the config key of the time step, for advice

@@ -91,7 +91,7 @@ Simulation::Simulation(StateReader& in, PairTable table)
   max_overlap_fraction_ = in.value<double>(), max_speed2_ = in.value<double>();
   external_forces_ = in.value<bool>();
   check_restored_state();
-  index_entry_owners();
+  index_entry_owners(true);
 }
 
 // A restored state is used as it is, so every index it holds is checked first: a damaged or

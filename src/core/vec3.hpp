@@ -35,10 +35,12 @@ static_assert(sizeof(Vec3) == 24, "Vec3 must stay three packed doubles (SoA arra
 
 // A Vec3 array as its 3 n doubles (x, y, z of each element in turn), for the vectorised loops
 // (core/pair_kernel_simd.hpp, core/particle_passes_simd.hpp).
-inline double* components(std::vector<Vec3>& v) {
+template <class Allocator>
+double* components(std::vector<Vec3, Allocator>& v) {
   return reinterpret_cast<double*>(v.data());
 }
-inline const double* components(const std::vector<Vec3>& v) {
+template <class Allocator>
+const double* components(const std::vector<Vec3, Allocator>& v) {
   return reinterpret_cast<const double*>(v.data());
 }
 

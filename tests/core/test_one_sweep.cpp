@@ -87,7 +87,8 @@ SweepRun run(Simulation::OneSweep choice, int threads, long steps) {
   r.rebuilds = sim.rebuild_count() - rebuilds;
   r.particles = sim.particles();
   r.walls = sim.walls();
-  r.springs = sim.pair_contacts().sliding_spring;
+  r.springs.assign(sim.pair_contacts().sliding_spring.begin(),
+                   sim.pair_contacts().sliding_spring.end());
   omp_set_num_threads(omp_get_num_procs());
   return r;
 }

@@ -66,7 +66,8 @@ struct PileResult {
 // The state a run ends in: the particles, and the pair entries' springs and results.
 void keep_final_state(const Simulation& sim, PileResult& r) {
   r.particles = sim.particles();
-  r.springs = sim.pair_contacts().sliding_spring;
+  r.springs.assign(sim.pair_contacts().sliding_spring.begin(),
+                   sim.pair_contacts().sliding_spring.end());
   r.results.assign(sim.pair_contacts().result.begin(), sim.pair_contacts().result.end());
 }
 
@@ -388,8 +389,8 @@ WallPileResult run_wall_pile(const char* kernel, int threads, long steps, bool p
   return r;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class A>
+bool same_bytes(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
