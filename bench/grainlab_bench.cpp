@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   std::string lammps_data, tile, specimen_csv;
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false;
-  int refresh_cost = 0;
+  int refresh_cost = 0, rebuild_cost = 0;
   std::string one_sweep = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
@@ -147,6 +147,11 @@ int main(int argc, char** argv) {
                  "after the timed steps, time this many selections of the active pair list at "
                  "the same positions (the refresh a step makes when a bead has moved half the "
                  "list skin) and print the time of one")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--rebuild-cost", rebuild_cost,
+                 "after the timed steps, time this many neighbour-list rebuilds at the same "
+                 "positions (binning, sorting, candidates, the active list) and print the time of "
+                 "one")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
@@ -243,6 +248,15 @@ int main(int argc, char** argv) {
             "{:.1f} MB, {:.0f} B per particle\n",
             1e3 * refresh_seconds / refresh_cost, refresh_cost, sim.pair_contacts().size(),
             refresh_rss, refresh_rss * 1048576.0 / n);
+      }
+      if (rebuild_cost > 0) {
+        const auto rebuild_start = std::chrono::steady_clock::now();
+        for (int k = 0; k < rebuild_cost; ++k) sim.rebuild_pair_list();
+        const double rebuild_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - rebuild_start)
+                .count();
+        fmt::print("        list rebuild: {:.2f} ms each ({} rebuilds)\n",
+                   1e3 * rebuild_seconds / rebuild_cost, rebuild_cost);
       }
       if (rebuild_peak) {
         // The timed run rebuilds rarely or never; a real run rebuilds every few hundred steps,

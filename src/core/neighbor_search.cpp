@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 namespace grainlab {
 
@@ -24,17 +25,21 @@ bool NeighborSearch::needs_rebuild(const ParticleStore& p, const std::vector<Wal
   return moved != 0;
 }
 
-void NeighborSearch::bin_and_sort(ParticleStore& p) {
-  const size_t n = p.size();
-  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+std::vector<uint32_t> NeighborSearch::bin_and_sort(ParticleStore& p) {
+  const long n = static_cast<long>(p.size());
+  double lo_x = 1e300, lo_y = 1e300, lo_z = 1e300, hi_x = -1e300, hi_y = -1e300, hi_z = -1e300;
   double max_radius = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], p.position[i][d]);
-      hi[d] = std::max(hi[d], p.position[i][d]);
-    }
+#pragma omp parallel for schedule(static) if (n > parallel_threshold) \
+    reduction(min                                                     \
+              : lo_x, lo_y, lo_z) reduction(max                       \
+                                            : hi_x, hi_y, hi_z, max_radius)
+  for (long i = 0; i < n; ++i) {
+    const Vec3& x = p.position[i];
+    lo_x = std::min(lo_x, x.x), lo_y = std::min(lo_y, x.y), lo_z = std::min(lo_z, x.z);
+    hi_x = std::max(hi_x, x.x), hi_y = std::max(hi_y, x.y), hi_z = std::max(hi_z, x.z);
     max_radius = std::max(max_radius, p.radius[i]);
   }
+  const Vec3 lo{lo_x, lo_y, lo_z}, hi{hi_x, hi_y, hi_z};
   // Cells at least one cut-off wide; a few far-flying particles must not blow up the grid,
   // so the number of cells is capped near 2 N (cells then grow).
   const double cutoff = 2.0 * max_radius + skin_;
@@ -56,7 +61,8 @@ void NeighborSearch::bin_and_sort(ParticleStore& p) {
   // Cells may be wider than `size` along an axis (extent / dims); the stencil stays +-1 cell
   // because the width never drops below the cut-off.
   std::vector<uint32_t> cell(n);
-  for (size_t i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
     int c[3];
     for (int d = 0; d < 3; ++d) {
       const double width = (hi[d] - lo[d]) / dims_[d];
@@ -65,15 +71,18 @@ void NeighborSearch::bin_and_sort(ParticleStore& p) {
     }
     cell[i] = static_cast<uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
   }
+  // (a counting sort, in the particles' order: serial, a few passes over N integers)
   cell_start_.assign(static_cast<size_t>(total) + 1, 0);
-  for (size_t i = 0; i < n; ++i) ++cell_start_[cell[i] + 1];
+  for (long i = 0; i < n; ++i) ++cell_start_[cell[i] + 1];
   std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
   std::vector<uint32_t> order(n);
   std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (size_t i = 0; i < n; ++i) order[fill[cell[i]]++] = static_cast<uint32_t>(i);
+  for (long i = 0; i < n; ++i) order[fill[cell[i]]++] = static_cast<uint32_t>(i);
   p.permute(order);
   cell_of_.resize(n);
-  for (size_t k = 0; k < n; ++k) cell_of_[k] = cell[order[k]];
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long k = 0; k < n; ++k) cell_of_[k] = cell[order[k]];
+  return order;
 }
 
 void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) const {
@@ -129,136 +138,136 @@ void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) co
 void NeighborSearch::build_wall_candidates(const ParticleStore& p, const std::vector<Wall>& walls,
                                            WallContacts& c) const {
   const long n = static_cast<long>(p.size());
-  c.row_start.assign(static_cast<size_t>(n) + 1, 0);
-  for (long i = 0; i < n; ++i) {
-    uint32_t count = 0;
-    for (const Wall& w : walls) count += wall_gap(w, p.position[i]).gap < p.radius[i] + skin_;
-    c.row_start[i + 1] = c.row_start[i] + count;
-  }
-  c.wall.resize(c.row_start[n]);
-  for (long i = 0; i < n; ++i) {
-    uint32_t k = c.row_start[i];
+  // Calls emit(w) for the walls within the skin of particle i, in the walls' order.
+  const auto for_each_wall = [&](long i, auto&& emit) {
     for (size_t w = 0; w < walls.size(); ++w)
       if (wall_gap(walls[w], p.position[i]).gap < p.radius[i] + skin_)
-        c.wall[k++] = static_cast<uint16_t>(w);
+        emit(static_cast<uint16_t>(w));
+  };
+  c.row_start.assign(static_cast<size_t>(n) + 1, 0);
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    uint32_t count = 0;
+    for_each_wall(i, [&](uint16_t) { ++count; });
+    c.row_start[i + 1] = count;
+  }
+  std::partial_sum(c.row_start.begin(), c.row_start.end(), c.row_start.begin());
+  c.wall.resize(c.row_start[n]);
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) {
+    uint32_t k = c.row_start[i];
+    for_each_wall(i, [&](uint16_t w) { c.wall[k++] = w; });
   }
 }
 
 namespace {
 
-// Keys of the contacts that carry history, sorted, with their entry index in the old store.
-struct KeyedEntry {
-  uint64_t key;
-  uint32_t entry;
-  bool operator<(const KeyedEntry& o) const { return key < o.key; }
-};
+// Where each entry of a store that is about to be built anew lay before: a particle keeps its
+// permanent id through a rebuild, but not its place (the sort moves it). The old stores are kept
+// with their rows and partners (or walls) in the old places, and `order` (new place k held the
+// particle of old place order[k]) leads from a new entry to the old row that held it, which is
+// searched (a few entries). Only entries with a history are carried.
+constexpr uint32_t no_entry = UINT32_MAX;
 
-// Sizes the history arrays of `fresh` and copies each entry's history from `old` where the key
-// of the entry was present before.
-template <class Store, class KeyOfNew>
-void carry_history(const Store& old, const std::vector<KeyedEntry>& old_keys, Store& fresh,
-                   ContactPieces pieces, KeyOfNew key_of_new) {
-  const size_t m = fresh.size();
-  fresh.sliding_spring.assign(m, Vec3{});
-  fresh.rolling_angle.assign(pieces.rolling ? m : 0, Vec3{});
-  fresh.twisting_angle.assign(pieces.twisting ? m : 0, 0.0);
-  fresh.rolling_force_displacement.assign(pieces.rolling_force ? m : 0, Vec3{});
-  if (old_keys.empty()) return;
-  const long count = static_cast<long>(m);
-#pragma omp parallel for schedule(static)
-  for (long e = 0; e < count; ++e) {
-    const KeyedEntry probe{key_of_new(e), 0};
-    auto it = std::lower_bound(old_keys.begin(), old_keys.end(), probe);
-    if (it == old_keys.end() || it->key != probe.key) continue;
-    fresh.sliding_spring[e] = old.sliding_spring[it->entry];
-    if (pieces.rolling) fresh.rolling_angle[e] = old.rolling_angle[it->entry];
-    if (pieces.twisting) fresh.twisting_angle[e] = old.twisting_angle[it->entry];
-    if (pieces.rolling_force)
-      fresh.rolling_force_displacement[e] = old.rolling_force_displacement[it->entry];
-  }
+// The old pair entry of the particles now at new places i and j, where it held a history. A half
+// list holds a pair once, in the row of the lower place.
+uint32_t old_pair_entry(const PairContacts& old, const std::vector<uint32_t>& order, uint32_t i,
+                        uint32_t j) {
+  const uint32_t a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
+  for (uint32_t e = old.row_start[a]; e < old.row_start[a + 1]; ++e)
+    if (old.partner[e] == b) return entry_has_history(old, e) ? e : no_entry;
+  return no_entry;
 }
 
-// The keys of the entries of `s` (CSR rows per particle) that carry history, sorted; counted
-// first so that the vector is allocated once, at its size.
-template <class Store, class KeyOf>
-std::vector<KeyedEntry> history_keys(const Store& s, size_t particles, KeyOf key_of) {
-  std::vector<KeyedEntry> keys;
-  if (s.row_start.size() != particles + 1) return keys;
-  size_t count = 0;
-  for (size_t e = 0; e < s.size(); ++e) count += entry_has_history(s, e);
-  keys.reserve(count);
-  for (size_t i = 0; i < particles; ++i)
-    for (uint32_t e = s.row_start[i]; e < s.row_start[i + 1]; ++e)
-      if (entry_has_history(s, e)) keys.push_back({key_of(i, e), e});
-  std::sort(keys.begin(), keys.end());
-  return keys;
+// The old wall entry of the particle now at new place i with wall w, where it held a history.
+uint32_t old_wall_entry(const WallContacts& old, const std::vector<uint32_t>& order, uint32_t i,
+                        uint16_t w) {
+  const uint32_t a = order[i];
+  for (uint32_t e = old.row_start[a]; e < old.row_start[a + 1]; ++e)
+    if (old.wall[e] == w) return entry_has_history(old, e) ? e : no_entry;
+  return no_entry;
 }
 
-uint64_t pair_key(uint32_t id_a, uint32_t id_b) {
-  const uint32_t lo = std::min(id_a, id_b), hi = std::max(id_a, id_b);
-  return (static_cast<uint64_t>(lo) << 32) | hi;
+// The histories of `store` with the rows and partners (or walls) that say where its entries lie:
+// what a rebuild reads of the old store.
+template <class Store>
+Store histories_with_places(Store&& store) {
+  Store h = histories_of(std::move(store));
+  h.row_start = std::move(store.row_start);
+  if constexpr (std::is_same_v<Store, PairContacts>)
+    h.partner = std::move(store.partner);
+  else
+    h.wall = std::move(store.wall);
+  return h;
 }
 
 }  // namespace
 
 void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, PairContacts& pairs,
                              WallContacts& wall_contacts, ContactPieces pieces) {
-  // Remember the histories under permanent keys before indices change.
-  std::vector<KeyedEntry> old_pair_keys = history_keys(pairs, p.size(), [&](size_t i, uint32_t e) {
-    return pair_key(p.id[i], p.id[pairs.partner[e]]);
-  });
-  std::vector<KeyedEntry> old_wall_keys =
-      history_keys(wall_contacts, p.size(), [&](size_t i, uint32_t e) {
-        return (static_cast<uint64_t>(p.id[i]) << 16) | wall_contacts.wall[e];
-      });
-  // Only the histories of the old stores are read from here on: the rest of them is freed
-  // before the new stores are built, so that the rebuild does not hold two whole contact stores
-  // (docs/performance.md sec. 13).
-  PairContacts old_pairs = histories_of(std::move(pairs));
-  WallContacts old_walls = histories_of(std::move(wall_contacts));
+  const long n = static_cast<long>(p.size());
+  // Only the histories of the old stores, with where their entries lie, are read from here on:
+  // the rest of them is freed before the new stores are built, so that the rebuild does not hold
+  // two whole contact stores (docs/performance.md sec. 13). Stores of another particle count
+  // (none yet) carry nothing.
+  const bool pairs_carried = pairs.row_start.size() == p.size() + 1;
+  const bool walls_carried = wall_contacts.row_start.size() == p.size() + 1;
+  PairContacts old_pairs = histories_with_places(std::move(pairs));
+  WallContacts old_walls = histories_with_places(std::move(wall_contacts));
   pairs = PairContacts{};
   wall_contacts = WallContacts{};
 
-  bin_and_sort(p);
+  const std::vector<uint32_t> order = bin_and_sort(p);
   build_pairs(p, pairs);
   build_wall_candidates(p, walls, wall_contacts);
 
   // The candidates keep only their rows and partners. Each finds its old entry, if it had a
-  // history, by its pair of ids; the active entries selected from them take those histories.
+  // history; the active entries selected from them take those histories.
   candidate_row_start_ = std::move(pairs.row_start);
   candidate_partner_ = std::move(pairs.partner);
   pairs = PairContacts{};
-  std::vector<uint32_t> old_entry(candidate_partner_.size(), no_old_entry);
-  if (!old_pair_keys.empty()) {
-    const std::vector<uint32_t> first = row_of_each_entry(candidate_row_start_);
-    const long count = static_cast<long>(old_entry.size());
-#pragma omp parallel for schedule(static)
-    for (long c = 0; c < count; ++c) {
-      const KeyedEntry probe{pair_key(p.id[first[c]], p.id[candidate_partner_[c]]), 0};
-      auto it = std::lower_bound(old_pair_keys.begin(), old_pair_keys.end(), probe);
-      if (it != old_pair_keys.end() && it->key == probe.key) old_entry[c] = it->entry;
-    }
-  }
+  std::vector<uint32_t, UninitializedAllocator<uint32_t>> old_entry(candidate_partner_.size());
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i)
+    for (uint32_t c = candidate_row_start_[i]; c < candidate_row_start_[i + 1]; ++c)
+      old_entry[c] = pairs_carried ? old_pair_entry(old_pairs, order, static_cast<uint32_t>(i),
+                                                    candidate_partner_[c])
+                                   : no_old_entry;
   select_active(p, old_pairs, old_entry, pairs, pieces);
   old_entry = {};
-  {
-    const std::vector<uint32_t> owner = row_of_each_entry(wall_contacts.row_start);
-    carry_history(old_walls, old_wall_keys, wall_contacts, pieces, [&](long e) {
-      return (static_cast<uint64_t>(p.id[owner[e]]) << 16) | wall_contacts.wall[e];
-    });
+  // the walls' histories, each entry's from its old entry (zero where it had none)
+  const size_t mw = wall_contacts.size();
+  WallContacts& fresh = wall_contacts;
+  fresh.sliding_spring.assign(mw, Vec3{});
+  fresh.rolling_angle.assign(pieces.rolling ? mw : 0, Vec3{});
+  fresh.twisting_angle.assign(pieces.twisting ? mw : 0, 0.0);
+  fresh.rolling_force_displacement.assign(pieces.rolling_force ? mw : 0, Vec3{});
+  if (walls_carried) {
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+    for (long i = 0; i < n; ++i)
+      for (uint32_t e = fresh.row_start[i]; e < fresh.row_start[i + 1]; ++e) {
+        const uint32_t from =
+            old_wall_entry(old_walls, order, static_cast<uint32_t>(i), fresh.wall[e]);
+        if (from == no_entry) continue;
+        fresh.sliding_spring[e] = old_walls.sliding_spring[from];
+        if (pieces.rolling) fresh.rolling_angle[e] = old_walls.rolling_angle[from];
+        if (pieces.twisting) fresh.twisting_angle[e] = old_walls.twisting_angle[from];
+        if (pieces.rolling_force)
+          fresh.rolling_force_displacement[e] = old_walls.rolling_force_displacement[from];
+      }
   }
-  // and the old histories and keys before the results are allocated
+  // and the old histories before the results are allocated
   old_pairs = PairContacts{}, old_walls = WallContacts{};
-  old_pair_keys = {}, old_wall_keys = {};
 
   allocate_results(pairs, pieces);
-  const size_t mw = wall_contacts.size();
-  wall_contacts.force_on_particle.assign(mw, Vec3{});
-  wall_contacts.torque_on_particle.assign(mw, Vec3{});
-  wall_contacts.normal_stiffness.assign(mw, 0.0);
-  wall_contacts.normal_force.assign(mw, 0.0);
+  fresh.force_on_particle.assign(mw, Vec3{});
+  fresh.torque_on_particle.assign(mw, Vec3{});
+  fresh.normal_stiffness.assign(mw, 0.0);
+  fresh.normal_force.assign(mw, 0.0);
 
-  position_at_build_ = p.position;
+  position_at_build_.resize(p.size());
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long i = 0; i < n; ++i) position_at_build_[i] = p.position[i];
   wall_pose_at_build_.resize(walls.size());
   for (size_t w = 0; w < walls.size(); ++w) wall_pose_at_build_[w] = pose_of(walls[w]);
   watch_for_rebuild();

@@ -6,7 +6,8 @@
 // every cell's particles are contiguous. Because of that order, "partner index > i" needs only
 // the particle's own cell and the cells after it; a pair becomes a candidate when the gap between
 // the spheres is below the skin. Walls get a candidate list the same way. Contact histories are
-// carried across a rebuild by a sort-merge on the permanent particle ids.
+// carried across a rebuild through the sort's order: each new entry looks for its pair (or wall)
+// in the old row of its particle's old place.
 // The candidates stay valid while no particle and no point of a wall's surface has moved more
 // than skin/2 (a wall that grows or turns counts by its farthest point: geometry/wall.hpp).
 //
@@ -115,7 +116,9 @@ class NeighborSearch {
   long refresh_count() const { return refresh_count_; }
 
  private:
-  void bin_and_sort(ParticleStore& particles);
+  // Sorts the particles into cell order; returns the order (new place k holds the particle of
+  // old place order[k]).
+  std::vector<uint32_t> bin_and_sort(ParticleStore& particles);
   void build_pairs(const ParticleStore& particles, PairContacts& pairs) const;
   void build_wall_candidates(const ParticleStore& particles, const std::vector<Wall>& walls,
                              WallContacts& contacts) const;

@@ -5,7 +5,9 @@ namespace {
 template <class T>
 void apply(std::vector<T>& field, const std::vector<uint32_t>& order, std::vector<T>& scratch) {
   scratch.resize(field.size());
-  for (size_t k = 0; k < order.size(); ++k) scratch[k] = field[order[k]];
+  const long n = static_cast<long>(order.size());
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
+  for (long k = 0; k < n; ++k) scratch[k] = field[order[k]];
   field.swap(scratch);
 }
 }  // namespace

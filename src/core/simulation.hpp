@@ -119,6 +119,14 @@ class Simulation {
     refresh_active_pairs();
     list_displacement2_ = 0.0;  // selected where they are now
   }
+  // Builds the neighbour lists again now, as a step does when a particle has moved half the skin
+  // (for benchmarks of the rebuild): the particles are sorted into cell order again, so storage
+  // indices may change (listeners hear after_rebuild); the results do not.
+  void rebuild_pair_list() {
+    rebuild_neighbors();
+    list_displacement2_ = 0.0;
+    for (StepListener* l : listeners_) l->after_rebuild(*this);
+  }
   // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the
   // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays) on up to 2
   // threads (where it was measured), always where it can, or never (in stages). The results are
