@@ -14,10 +14,11 @@ namespace {
 // Below this many rows a pass of the selection runs on one thread.
 constexpr long parallel_rows = 4 * parallel_threshold;
 
-// row_start[1..n] from counts to their running sums (row_start[0] = 0): each thread sums its
-// own part of the rows, then adds the totals of the parts before it. Integer sums: the same for
-// any thread count.
-void sum_counts(std::vector<uint32_t>& row_start) {
+// A CSR index (rows' or columns' starts) from counts to their running sums: starts[k + 1] holds
+// the count of row k, starts[0] = 0. Each thread sums its own part, then adds the totals of the
+// parts before it. Integer sums: the same for any thread count.
+void sum_counts(std::vector<uint32_t>& starts) {
+  std::vector<uint32_t>& row_start = starts;
   const long n = static_cast<long>(row_start.size());
   const int team = n > parallel_rows ? omp_get_max_threads() : 1;
   std::vector<uint32_t> part_total(static_cast<size_t>(team) + 1, 0);
@@ -126,8 +127,7 @@ void NeighborSearch::select_active(const ParticleStore& p, const PairContacts& o
       const uint32_t from = old_entry[c];
       const uint32_t j = candidate_partner_[c];
       const double reach = ri + p.radius[j] + list_skin_;
-      // (the distance's test as a value, not a branch: about a third of a dense packing's
-      // candidates fail it, unpredictably; few of those hold a history)
+      // (the history is looked up only for a candidate beyond the list skin: few of them)
       bool keep = norm2(p.position[j] - xi) < reach * reach;
       if (!keep && from != no_old_entry) keep = entry_has_history(old, from);
       decide(c, keep);
