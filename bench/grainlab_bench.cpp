@@ -235,29 +235,27 @@ int main(int argc, char** argv) {
           "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f} "
           "{:>7.3f}\n",
           t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps);
+      // ms per call of `update`, timed over `count` calls in a row
+      const auto ms_each = [](int count, auto&& update) {
+        const auto start = std::chrono::steady_clock::now();
+        for (int k = 0; k < count; ++k) update();
+        return 1e3 *
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+               count;
+      };
       if (refresh_cost > 0) {
         // (after the figures above: a refresh at the same positions selects the same list,
         // with the same histories, so it changes no result)
-        const auto refresh_start = std::chrono::steady_clock::now();
-        for (int k = 0; k < refresh_cost; ++k) sim.refresh_pair_list();
-        const double refresh_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - refresh_start).count();
+        const double ms = ms_each(refresh_cost, [&] { sim.refresh_pair_list(); });
         const double refresh_rss = peak_rss_mb();
         fmt::print(
             "        list refresh: {:.2f} ms each ({} refreshes, {} entries); peak RSS with them "
             "{:.1f} MB, {:.0f} B per particle\n",
-            1e3 * refresh_seconds / refresh_cost, refresh_cost, sim.pair_contacts().size(),
-            refresh_rss, refresh_rss * 1048576.0 / n);
+            ms, refresh_cost, sim.pair_contacts().size(), refresh_rss, refresh_rss * 1048576.0 / n);
       }
-      if (rebuild_cost > 0) {
-        const auto rebuild_start = std::chrono::steady_clock::now();
-        for (int k = 0; k < rebuild_cost; ++k) sim.rebuild_pair_list();
-        const double rebuild_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - rebuild_start)
-                .count();
+      if (rebuild_cost > 0)
         fmt::print("        list rebuild: {:.2f} ms each ({} rebuilds)\n",
-                   1e3 * rebuild_seconds / rebuild_cost, rebuild_cost);
-      }
+                   ms_each(rebuild_cost, [&] { sim.rebuild_pair_list(); }), rebuild_cost);
       if (rebuild_peak) {
         // The timed run rebuilds rarely or never; a real run rebuilds every few hundred steps,
         // and the rebuild holds the old contact store while it builds the new one. Moving one

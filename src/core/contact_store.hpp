@@ -22,11 +22,6 @@ namespace grainlab {
 // written into `row` (its storage kept where it suffices), the rows shared among the threads
 // (core/contact_store.cpp).
 void index_rows_of_entries(const std::vector<uint32_t>& row_start, std::vector<uint32_t>& row);
-inline std::vector<uint32_t> row_of_each_entry(const std::vector<uint32_t>& row_start) {
-  std::vector<uint32_t> row;
-  index_rows_of_entries(row_start, row);
-  return row;
-}
 
 // What the last force evaluation of one pair entry left for the gather, in one cache line. The
 // gather reads each entry twice, once for each body, and the second read lies in another

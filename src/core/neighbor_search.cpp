@@ -167,25 +167,28 @@ namespace {
 // with their rows and partners (or walls) in the old places, and `order` (new place k held the
 // particle of old place order[k]) leads from a new entry to the old row that held it, which is
 // searched (a few entries). Only entries with a history are carried.
-constexpr uint32_t no_entry = UINT32_MAX;
 
-// The old pair entry of the particles now at new places i and j, where it held a history. A half
-// list holds a pair once, in the row of the lower place.
+// The entry of the old store's row `row` that is_it(entry) picks, where it holds a history;
+// NeighborSearch::no_old_entry otherwise.
+template <class Store, class Match>
+uint32_t old_entry_with_history(const Store& old, uint32_t row, Match is_it) {
+  for (uint32_t e = old.row_start[row]; e < old.row_start[row + 1]; ++e)
+    if (is_it(e)) return entry_has_history(old, e) ? e : NeighborSearch::no_old_entry;
+  return NeighborSearch::no_old_entry;
+}
+
+// The old pair entry of the particles now at new places i and j (a half list holds a pair once,
+// in the row of the lower place).
 uint32_t old_pair_entry(const PairContacts& old, const std::vector<uint32_t>& order, uint32_t i,
                         uint32_t j) {
   const uint32_t a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
-  for (uint32_t e = old.row_start[a]; e < old.row_start[a + 1]; ++e)
-    if (old.partner[e] == b) return entry_has_history(old, e) ? e : no_entry;
-  return no_entry;
+  return old_entry_with_history(old, a, [&](uint32_t e) { return old.partner[e] == b; });
 }
 
-// The old wall entry of the particle now at new place i with wall w, where it held a history.
+// The old wall entry of the particle now at new place i with wall w.
 uint32_t old_wall_entry(const WallContacts& old, const std::vector<uint32_t>& order, uint32_t i,
                         uint16_t w) {
-  const uint32_t a = order[i];
-  for (uint32_t e = old.row_start[a]; e < old.row_start[a + 1]; ++e)
-    if (old.wall[e] == w) return entry_has_history(old, e) ? e : no_entry;
-  return no_entry;
+  return old_entry_with_history(old, order[i], [&](uint32_t e) { return old.wall[e] == w; });
 }
 
 // The histories of `store` with the rows and partners (or walls) that say where its entries lie:
@@ -248,7 +251,7 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
       for (uint32_t e = fresh.row_start[i]; e < fresh.row_start[i + 1]; ++e) {
         const uint32_t from =
             old_wall_entry(old_walls, order, static_cast<uint32_t>(i), fresh.wall[e]);
-        if (from == no_entry) continue;
+        if (from == no_old_entry) continue;
         fresh.sliding_spring[e] = old_walls.sliding_spring[from];
         if (pieces.rolling) fresh.rolling_angle[e] = old_walls.rolling_angle[from];
         if (pieces.twisting) fresh.twisting_angle[e] = old_walls.twisting_angle[from];

@@ -115,6 +115,9 @@ class NeighborSearch {
   long& refresh_count_ref() { return refresh_count_; }
   long refresh_count() const { return refresh_count_; }
 
+  // An entry of an old store that none takes over (no history to carry).
+  static constexpr uint32_t no_old_entry = UINT32_MAX;
+
  private:
   // Sorts the particles into cell order; returns the order (new place k holds the particle of
   // old place order[k]).
@@ -125,7 +128,6 @@ class NeighborSearch {
   // The active list from the candidates now (rows, partners, transpose, histories; the results
   // are allocate_results'): those within the list skin, and any that holds a history.
   // old_entry[c]: candidate c's entry in `old`, which holds histories, or no_old_entry.
-  static constexpr uint32_t no_old_entry = UINT32_MAX;
   void select_active(const ParticleStore& particles, const PairContacts& old,
                      std::span<const uint32_t> old_entry, PairContacts& active,
                      ContactPieces pieces);
