@@ -104,6 +104,27 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
   return p;
 }
 
+// The timed steps' stages per thread (--phase-times): the mean over the threads and the largest,
+// in µs per step; the parts outside the regions are the stepping thread's.
+void print_phase_times(const grainlab::StepPhaseTimes& t) {
+  using grainlab::StepPhaseTimes;
+  if (t.steps() == 0) return;
+  const double per_step = 1e6 / static_cast<double>(t.steps());
+  fmt::print(
+      "        stages over {} steps, {} threads: µs per step, mean over the threads / largest\n",
+      t.steps(), t.threads());
+  double total = 0.0;
+  for (int k = 0; k < StepPhaseTimes::part_count; ++k) {
+    const auto part = static_cast<StepPhaseTimes::Part>(k);
+    total += t.mean(part);
+    if (t.largest(part) == 0.0) continue;  // (stages the steps did not run)
+    fmt::print("          {:<16} {:>10.1f} {:>10.1f}", StepPhaseTimes::names[k],
+               t.mean(part) * per_step, t.largest(part) * per_step);
+    fmt::print("\n");
+  }
+  fmt::print("          {:<16} {:>10.1f}\n", "step (sum)", total * per_step);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -119,9 +140,9 @@ int main(int argc, char** argv) {
   std::string results_dir = std::string(GRAINLAB_SOURCE_DIR) + "/bench/results";
   std::string lammps_data, tile, specimen_csv;
   std::string label = "";
-  bool allow_1m = false, no_csv = false, rebuild_peak = false;
+  bool allow_1m = false, no_csv = false, rebuild_peak = false, phase_times = false;
   int refresh_cost = 0, rebuild_cost = 0;
-  std::string one_sweep = "automatic";
+  std::string one_sweep = "automatic", chunk_tail = "even";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
                  "thread counts to run (default: 1, 2, 4, ... up to the processor count)")
@@ -153,6 +174,13 @@ int main(int argc, char** argv) {
                  "positions (binning, sorting, candidates, the active list) and print the time of "
                  "one")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--phase-times", phase_times,
+               "time each thread's stages of the timed steps and its waits after them, and print "
+               "them after the run (core/step_phase_times.hpp; the same results)");
+  app.add_option("--chunk-tail", chunk_tail,
+                 "even | shrinking: the force stages' chunks at the back of each thread's block "
+                 "(core/chunk_queue.hpp; the same results)")
+      ->check(CLI::IsMember({"even", "shrinking"}));
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
                  "results)")
@@ -215,7 +243,10 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       Simulation sim = make_simulation(packing, gravity);
       sim.set_one_sweep(sweep_choice);
+      sim.set_chunk_tail(chunk_tail == "shrinking" ? grainlab::ChunkQueue::Tail::shrinking
+                                                   : grainlab::ChunkQueue::Tail::even);
       sim.advance(warmup);
+      sim.time_step_phases(phase_times);
       const long rebuilds0 = sim.rebuild_count(), sweeps0 = sim.one_sweep_steps();
       const auto start = std::chrono::steady_clock::now();
       sim.advance(steps);
@@ -235,6 +266,7 @@ int main(int argc, char** argv) {
           "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f} "
           "{:>7.3f}\n",
           t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps);
+      if (phase_times) print_phase_times(sim.step_phase_times());
       // ms per call of `update`, timed over `count` calls in a row
       const auto ms_each = [](int count, auto&& update) {
         const auto start = std::chrono::steady_clock::now();

@@ -16,6 +16,15 @@
 // thread whose block follows, the back of a block is the part whose rows reach into its own
 // particles (docs/performance.md sec. 20).
 //
+// A block's chunks are of one length (Tail::even, the default), or they shrink towards its back
+// (Tail::shrinking, chunk_bounds): then the last chunk a thread works on, its own or one it takes
+// from another block, is short, and the threads could reach the next barrier within a short
+// chunk of each other. With equal chunks a thread waited 78 µs of 1.7 ms per step at the
+// contacts' barrier on 16 threads of 139,632 beads, where a chunk takes about 100 µs
+// (docs/performance.md sec. 31). On the 2 threads of the development VM the shrinking tails
+// gained nothing (0.99 of the even ones over 30 interleaved rounds, waits of 4 to 9 µs either
+// way, sec. 33); they are a choice (`grainlab_bench --chunk-tail`) until 16 cores are measured.
+//
 // Which thread computes a chunk never changes the arithmetic of a particle or a contact (each
 // is computed whole, by one thread, from data no other thread writes in that stage), so the
 // results stay bit-identical for any thread count and any order in which chunks are taken.
@@ -27,6 +36,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "core/thread_block.hpp"
 #include "core/thread_partition.hpp"
@@ -40,16 +50,40 @@ class ChunkQueue {
   ChunkQueue(const ChunkQueue&) {}
   ChunkQueue& operator=(const ChunkQueue&) { return *this; }
 
+  enum class Tail { even, shrinking };  // the chunks at a block's back (chunk_bounds)
+
   // Serial, before the parallel region: `team` equal blocks of [0, n), taken `chunk` indices at
-  // a time. `team` must be the size of the team that will call drain (otherwise each thread falls
-  // back to its own block of [0, n), without sharing).
-  void plan(long n, int team, long chunk) {
-    plan_blocks(n, team, chunk, [&](int t) { return block_of(n, team, t); });
+  // a time. `team` must be the size of the team that will call drain (otherwise each thread
+  // falls back to its own block of [0, n), without sharing).
+  void plan(long n, int team, long chunk, Tail tail = Tail::even) {
+    plan_blocks(n, team, chunk, tail, [&](int t) { return block_of(n, team, t); });
   }
   // The same with the blocks of a partition (core/thread_partition.hpp).
-  void plan(const ThreadPartition& partition, long chunk) {
-    plan_blocks(partition.size(), partition.team(), chunk,
+  void plan(const ThreadPartition& partition, long chunk, Tail tail = Tail::even) {
+    plan_blocks(partition.size(), partition.team(), chunk, tail,
                 [&](int t) { return partition.block(t); });
+  }
+
+  // The chunks of block [first, end) for chunks of `chunk` indices, as `bounds` (chunk k is
+  // [bounds[k], bounds[k + 1])): `chunk` indices each, the first chunk what is left (at most
+  // `chunk`); with a shrinking tail, from the back two of the shortest length, then each twice
+  // the one behind it up to `chunk`. The shortest is an eighth of `chunk`, and at least 32
+  // indices (a chunk's rows end in a part-filled batch of the vectorised kernel).
+  static void chunk_bounds(long first, long end, long chunk, Tail tail, std::vector<long>& bounds) {
+    bounds.clear();
+    bounds.push_back(end);
+    const long shortest =
+        tail == Tail::shrinking ? std::min(chunk, std::max(smallest_chunk, chunk / 8)) : chunk;
+    long length = shortest, same_length = 0;
+    for (long at = end; at > first;) {
+      const long next = std::max(first, at - length);
+      bounds.push_back(next);
+      at = next;
+      // (two of the shortest, then doubling up to `chunk`)
+      if (length < chunk && (length > shortest || ++same_length == 2))
+        length = std::min(chunk, 2 * length);
+    }
+    std::reverse(bounds.begin(), bounds.end());
   }
 
   // What a thread did on its own block in one drain: indices, and the seconds it took.
@@ -89,12 +123,13 @@ class ChunkQueue {
   // Chunks of a block go to other threads only while more than this many are untaken: the
   // owner's last chunk stays its own (measured: docs/performance.md sec. 20).
   static constexpr long chunks_left_to_owner = 1;
+  static constexpr long smallest_chunk = 32;
 
   // The chunks of block [first, end) not yet taken are numbers [front, back), both halves of one
   // atomic word, so that the owner (front) and the others (back) never take the same chunk.
   struct alignas(64) Cursor {  // one cache line each: threads take chunks without false sharing
     std::atomic<uint64_t> untaken{0};
-    long first = 0, end = 0;
+    std::vector<long> bounds;  // of the chunks (chunk_bounds); its storage kept from plan to plan
   };
   static uint64_t pack(long front, long back) {
     return static_cast<uint64_t>(front) << 32 | static_cast<uint64_t>(back);
@@ -115,34 +150,35 @@ class ChunkQueue {
   }
   template <class F>
   long run(const Cursor& c, long k, F& chunk) const {  // returns the chunk's length
-    const long first = c.first + k * chunk_, end = std::min(first + chunk_, c.end);
+    const long first = c.bounds[k], end = c.bounds[k + 1];
     chunk(first, end);
     return end - first;
   }
   template <class BlockOf>
-  void plan_blocks(long n, int team, long chunk, BlockOf&& block) {
+  void plan_blocks(long n, int team, long chunk, Tail tail, BlockOf&& block) {
     if (team > capacity_) {
       cursors_ = std::make_unique<Cursor[]>(team);
       capacity_ = team;
     }
-    n_ = n, team_ = team, chunk_ = std::max(1L, chunk);
-    // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 1 chunks
-    // is taken in larger chunks)
-    constexpr long max_chunks = 0xffffffffL;
+    n_ = n, team_ = team;
+    long length = std::max(1L, chunk);
+    // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 100
+    // chunks is taken in longer chunks)
+    constexpr long max_chunks = 0xffffffffL - 100;
     for (int t = 0; t < team; ++t) {
       const IndexBlock b = block(t);
-      chunk_ = std::max(chunk_, (b.end - b.first + max_chunks - 1) / max_chunks);
+      length = std::max(length, (b.end - b.first + max_chunks - 1) / max_chunks);
     }
     for (int t = 0; t < team; ++t) {
       const IndexBlock b = block(t);
       Cursor& c = cursors_[t];
-      c.first = b.first, c.end = b.end;
-      c.untaken.store(pack(0, (b.end - b.first + chunk_ - 1) / chunk_), std::memory_order_relaxed);
+      chunk_bounds(b.first, b.end, length, tail, c.bounds);
+      c.untaken.store(pack(0, static_cast<long>(c.bounds.size()) - 1), std::memory_order_relaxed);
     }
   }
   std::unique_ptr<Cursor[]> cursors_;
   int capacity_ = 0, team_ = 0;
-  long n_ = 0, chunk_ = 1;
+  long n_ = 0;
 };
 
 // The chunk size for n indices on a team: about 8 chunks per thread, so that the last ones can

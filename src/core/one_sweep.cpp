@@ -114,16 +114,23 @@ void Simulation::sweep_step() {
   int stale = 0;
   double displacement2 = 0.0, scale2 = 0.0, max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
+  StepPhaseTimes& timer = phase_times_;
+  const bool timed = timer.on();
+  if (timed) timer.region_begins();
 #pragma omp parallel reduction(| : stale) \
     reduction(max : displacement2, scale2, max_fraction, max_speed2, next_speed2) \
     reduction(+ : handed_back, walls_handed_back) if (team > 1)
   {
     const IndexBlock block = partition_.thread_block_of(n);
-    double busy = 0.0, since = omp_get_wtime();  // time on the block, the barriers left out
-    const auto wait_for_the_others = [&] {
-      busy += omp_get_wtime() - since;
+    // time on the block, the barriers left out
+    double busy = 0.0, since = timed ? timer.thread_begins() : omp_get_wtime();
+    const auto wait_for_the_others = [&](StepPhaseTimes::Part stage) {
+      const double done = omp_get_wtime();
+      busy += done - since;
+      if (timed) timer.add(stage, done - since);
 #pragma omp barrier
       since = omp_get_wtime();
+      if (timed) timer.add(static_cast<StepPhaseTimes::Part>(stage + 1), since - done);
     };
     // The first half kick and the drift of the particles up to `target` (kick_and_drift's
     // arithmetic and its list test), with their records.
@@ -139,7 +146,7 @@ void Simulation::sweep_step() {
     };
     // 1. the head, which the rows of the blocks before this one may reach
     drift_to(std::min(block.end, block.first + ahead));
-    wait_for_the_others();
+    wait_for_the_others(StepPhaseTimes::sweep_head);
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
     // half kick right after its row
     for (long first = block.first; first < block.end; first += force_tile) {
@@ -149,16 +156,22 @@ void Simulation::sweep_step() {
                                compute_wall_forces(dt, {first, end}, walls_handed_back)});
       close_particles(first, end, block.first, false, max_speed2, next_speed2);
     }
-    wait_for_the_others();
+    wait_for_the_others(StepPhaseTimes::sweep_block);
+    // The walls' totals, serial in entry order (their bits), by the first thread, whose block has
+    // no late particles, while the others sum theirs. After the region they had cost 41 µs per
+    // step of 139,632 beads (docs/performance.md sec. 33).
+    if (omp_get_thread_num() == 0) gather_walls();
     // 3. the late particles, now that every row is done
     close_particles(block.first, std::min(block.end, block.first + ahead), block.first, true,
                     max_speed2, next_speed2);
     busy += omp_get_wtime() - since;
+    if (timed) timer.last_work(StepPhaseTimes::sweep_late, since);
     partition_.record(omp_get_thread_num(), block.end - block.first, busy);
     stale |= tally.stale;
     displacement2 = std::max(displacement2, tally.displacement2);
     scale2 = std::max(scale2, tally.scale2);
   }
+  if (timed) phase_regions_ += timer.region_ends(StepPhaseTimes::sweep_late_wait);
   if (stale != 0)  // one_sweep_possible's bound excludes it: a bug, not a physical state
     throw std::logic_error("a particle moved half the list skin in a step run as one sweep");
   list_displacement2_ = displacement2;
@@ -166,7 +179,6 @@ void Simulation::sweep_step() {
   max_overlap_fraction_ = max_fraction;
   pairs_handed_to_scalar_law_ = handed_back;
   walls_handed_to_scalar_law_ = walls_handed_back;
-  gather_walls();
   max_speed2_ = max_speed2;
   next_speed2_ = next_speed2;
   half_kick_walls();

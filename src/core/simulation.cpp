@@ -38,6 +38,10 @@ void Simulation::refresh_active_pairs() {
 }
 
 void Simulation::step() {
+  const bool timed = phase_times_.on();  // (core/step_phase_times.hpp)
+  const double step_start = timed ? StepPhaseTimes::now() : 0.0;
+  double update_seconds = 0.0;
+  phase_regions_ = 0.0;
   follow_step_team_limit();  // (the team may change between steps: core/team_limit.hpp)
   for (StepListener* l : listeners_) l->before_step(*this);
   drift_walls();
@@ -53,6 +57,7 @@ void Simulation::step() {
     // step would have.
     if (update == ListUpdate::refresh && neighbors_.needs_rebuild(particles_, walls_))
       update = ListUpdate::rebuild;
+    const double update_start = timed ? StepPhaseTimes::now() : 0.0;
     if (update == ListUpdate::rebuild) {
       rebuild_neighbors();
       records_written = false;
@@ -64,6 +69,7 @@ void Simulation::step() {
       records_written = false;
     }
     if (update != ListUpdate::none) list_displacement2_ = 0.0;  // selected where they are now
+    if (timed) update_seconds = StepPhaseTimes::now() - update_start;
     compute_forces(settings_.time_step, true, records_written);
   }
   partition_.update();
@@ -71,6 +77,8 @@ void Simulation::step() {
   ++step_count_;
   check_health();
   for (StepListener* l : listeners_) l->after_step(*this);
+  if (timed)
+    phase_times_.step_done(StepPhaseTimes::now() - step_start, phase_regions_, update_seconds);
 }
 
 void Simulation::scale_positions(const Vec3& centre, double factor) {
@@ -133,13 +141,16 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   int moved = 0, stale = 0;
   double displacement2 = 0.0, scale2 = 0.0;
   partition_.plan(n, step_team(n));
+  StepPhaseTimes& timer = phase_times_;
+  const bool timed = timer.on();
+  if (timed) timer.region_begins();
 #pragma omp parallel reduction(|               \
                                : moved, stale) \
     reduction(max                              \
               : displacement2, scale2) if (n > parallel_threshold)
   {
     const IndexBlock block = partition_.thread_block_of(n);
-    const double start = omp_get_wtime();
+    const double start = timed ? timer.thread_begins() : omp_get_wtime();
     DriftTally tally;
     for (long first = block.first; first < block.end; first += tile) {
       const long end = std::min(block.end, first + tile);
@@ -150,7 +161,9 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
     displacement2 = std::max(displacement2, tally.displacement2);
     scale2 = std::max(scale2, tally.scale2);
     partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
+    if (timed) timer.last_work(StepPhaseTimes::drift, start);
   }
+  if (timed) phase_regions_ += timer.region_ends(StepPhaseTimes::drift_wait);
   list_displacement2_ = bound ? displacement2 : INFINITY;
   position_scale2_ = bound ? scale2 : INFINITY;
   if (moved != 0 || !neighbors_.walls_and_count_allow(particles_.size(), walls_))
@@ -225,9 +238,9 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   const long chunk = stage_chunk(n, team);
   const bool records = uses_pair_kernel() && !records_written;
   partition_.plan(n, team);  // (the drift's blocks, unless this is a fresh state)
-  if (records) record_chunks_.plan(partition_, chunk);
-  contact_chunks_.plan(partition_, chunk);
-  particle_chunks_.plan(partition_, chunk);
+  if (records) record_chunks_.plan(partition_, chunk, chunk_tail_);
+  contact_chunks_.plan(partition_, chunk, chunk_tail_);
+  particle_chunks_.plan(partition_, chunk, chunk_tail_);
   double max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
   // (for one_sweep_possible and the kernel's test for contacts begun in the next step)
@@ -237,20 +250,30 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   // stage runs only where kick_and_drift has not written them (after a rebuild, on a fresh
   // state): within a run of steps the region has two stages and one barrier. Each stage shares
   // its chunks (core/chunk_queue.hpp).
+  StepPhaseTimes& timer = phase_times_;
+  const bool timed = timer.on();
+  if (timed) timer.region_begins();
 #pragma omp parallel reduction(max : max_fraction, max_speed2, next_speed2) \
     reduction(+ : handed_back, walls_handed_back) if (parallel)
   {
+    double since = timed ? timer.thread_begins() : 0.0;
+    // (the timers' barrier: the time before it is the stage's, after it the wait's)
+    const auto barrier_after = [&](StepPhaseTimes::Part stage) {
+      if (timed) since = timer.add_since(stage, since);
+#pragma omp barrier
+      if (timed) since = timer.add_since(static_cast<StepPhaseTimes::Part>(stage + 1), since);
+    };
     if (records) {
       record_chunks_.drain([&](long first, long end) {
         write_particle_records(drift, {first, end});
       });
-#pragma omp barrier
+      barrier_after(StepPhaseTimes::records);
     }
     const ChunkQueue::OwnWork contacts = contact_chunks_.drain([&](long first, long end) {
       max_fraction = std::max({max_fraction, compute_pair_forces(drift, {first, end}, handed_back),
                                compute_wall_forces(drift, {first, end}, walls_handed_back)});
     });
-#pragma omp barrier
+    barrier_after(StepPhaseTimes::contacts);
     // The walls' totals, serial in entry order (their bits), by one thread while the others
     // start on the particles' sums: they take its chunks (core/chunk_queue.hpp). After the
     // region, every thread had waited for them: on 16 Xeon threads, 139,632 beads, the step's
@@ -264,7 +287,9 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
     });
     partition_.record(omp_get_thread_num(), contacts.count + gathered.count,
                       contacts.seconds + gathered.seconds);
+    if (timed) timer.last_work(StepPhaseTimes::gather, since);
   }
+  if (timed) phase_regions_ += timer.region_ends(StepPhaseTimes::gather_wait);
   max_overlap_fraction_ = max_fraction;
   pairs_handed_to_scalar_law_ = handed_back;
   walls_handed_to_scalar_law_ = walls_handed_back;

@@ -21,6 +21,7 @@
 #include "core/particles.hpp"
 #include "core/state_io.hpp"
 #include "core/step_listener.hpp"
+#include "core/step_phase_times.hpp"
 #include "core/thread_partition.hpp"
 #include "geometry/wall.hpp"
 
@@ -137,6 +138,13 @@ class Simulation {
     choose_one_sweep();
   }
   long one_sweep_steps() const { return one_sweep_steps_; }  // steps run as one sweep
+  // The chunks at the back of each thread's block in the force stages (core/chunk_queue.hpp;
+  // the same results either way).
+  void set_chunk_tail(ChunkQueue::Tail tail) { chunk_tail_ = tail; }
+  // Per-thread times of the step's stages and waits, from now on (zeroed) or no more
+  // (core/step_phase_times.hpp; the same results either way).
+  void time_step_phases(bool on) { phase_times_.switch_on(on, omp_get_max_threads()); }
+  const StepPhaseTimes& step_phase_times() const { return phase_times_; }
 
   double kinetic_energy() const;     // translational + rotational, J
   long touching_pair_count() const;  // particle-particle contacts with F_n > 0
@@ -230,6 +238,8 @@ class Simulation {
   OneSweep one_sweep_choice_ = OneSweep::automatic;
   bool one_sweep_wanted_ = false;  // the choice for this list: the drift and kick form the bound
   long one_sweep_steps_ = 0;
+  StepPhaseTimes phase_times_;
+  double phase_regions_ = 0.0;  // s: this step's parallel regions, while the timers are on
   // How far ahead of their rows the list's partners lie (index_entry_owners): the mean decides
   // the rows' prefetch and the sweep, the farthest how far ahead of a row the sweep's drift must
   // have written its partners' records.
@@ -255,6 +265,7 @@ class Simulation {
   // Who takes which particles in compute_forces' three stages (records; pair rows and wall
   // contacts; gather and half kick): planned afresh at each call.
   ChunkQueue record_chunks_, contact_chunks_, particle_chunks_;
+  ChunkQueue::Tail chunk_tail_ = ChunkQueue::Tail::even;
   // The block each thread starts from in every stage, sized by the threads' measured speeds
   // (planned in kick_and_drift and compute_forces, updated after each step).
   ThreadPartition partition_;

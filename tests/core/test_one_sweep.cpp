@@ -32,6 +32,7 @@ struct SweepRun {
   std::vector<double> largest_overlap;  // per step
   long steps = 0, sweeps = 0, refreshes = 0, rebuilds = 0, handed_back = 0, touching = 0;
   std::string kernel;
+  StepPhaseTimes times;  // when the run was timed
 };
 
 Simulation make_packing() {
@@ -59,10 +60,11 @@ Simulation make_packing() {
   return Simulation(std::move(p), walls, two_material_table(0.6, 0.3), settings);
 }
 
-SweepRun run(Simulation::OneSweep choice, int threads, long steps) {
+SweepRun run(Simulation::OneSweep choice, int threads, long steps, bool timed = false) {
   omp_set_num_threads(threads);
   Simulation sim = make_packing();
   sim.set_one_sweep(choice);
+  sim.time_step_phases(timed);
   SweepRun r;
   r.kernel = sim.pair_kernel_name();
   const long refreshes = sim.list_refresh_count(), rebuilds = sim.rebuild_count();
@@ -89,6 +91,7 @@ SweepRun run(Simulation::OneSweep choice, int threads, long steps) {
   r.walls = sim.walls();
   r.springs.assign(sim.pair_contacts().sliding_spring.begin(),
                    sim.pair_contacts().sliding_spring.end());
+  r.times = sim.step_phase_times();
   omp_set_num_threads(omp_get_num_procs());
   return r;
 }
@@ -178,4 +181,37 @@ TEST(OneSweep, ACommandBetweenStepsForgetsTheBound) {
   sim.advance(3);
   EXPECT_EQ(sim.one_sweep_steps(), before + 2);
   omp_set_num_threads(omp_get_num_procs());
+}
+
+// The step phase timers (core/step_phase_times.hpp, grainlab_bench --phase-times) leave the
+// results as they are, and account for every step: each thread's parts of a region add up to the
+// region's time, and the parts' means to the steps' wall time. Reference: the same run untimed.
+TEST(StepPhaseTimes, LeaveTheBitsAndAccountForTheSteps) {
+  for (Simulation::OneSweep choice : {Simulation::OneSweep::always, Simulation::OneSweep::never}) {
+    const bool sweeps = choice == Simulation::OneSweep::always;
+    SCOPED_TRACE(sweeps ? "every possible step as one sweep" : "in stages");
+    const SweepRun untimed = run(choice, 2, 600);
+    const SweepRun timed = run(choice, 2, 600, true);
+    expect_identical(untimed, timed);
+    ASSERT_GT(timed.refreshes + timed.rebuilds, 0);
+    const StepPhaseTimes& t = timed.times;
+    EXPECT_EQ(t.steps(), 600);
+    EXPECT_EQ(t.threads(), 2);
+    EXPECT_EQ(untimed.times.steps(), 0);
+    double sum = 0.0;
+    for (int k = 0; k < StepPhaseTimes::part_count; ++k) {
+      const auto part = static_cast<StepPhaseTimes::Part>(k);
+      EXPECT_GE(t.largest(part), t.mean(part)) << StepPhaseTimes::names[k];
+      sum += t.mean(part);
+    }
+    EXPECT_GT(t.step_seconds(), 0.0);
+    EXPECT_NEAR(sum, t.step_seconds(), 1e-9 * t.step_seconds());
+    // the stages that ran were timed: the sweeps' where steps were swept, the others' (the steps
+    // next to a list update run in stages either way) and the list updates
+    for (auto part : {StepPhaseTimes::drift, StepPhaseTimes::contacts, StepPhaseTimes::gather,
+                      StepPhaseTimes::list_update, StepPhaseTimes::start})
+      EXPECT_GT(t.mean(part), 0.0) << StepPhaseTimes::names[part];
+    EXPECT_EQ(t.mean(StepPhaseTimes::sweep_block) > 0.0, sweeps);
+    EXPECT_EQ(timed.sweeps > 0, sweeps);
+  }
 }
