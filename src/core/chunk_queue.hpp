@@ -64,6 +64,14 @@ class ChunkQueue {
                 [&](int t) { return partition.block(t); });
   }
 
+  // The same with ranges of [0, n) of any length, one per thread of `team`, in order (the tails
+  // of the blocks of a step run as one sweep, core/one_sweep.cpp). Only the planned team may
+  // drain it: another team would take the blocks of [0, n).
+  template <class RangeOf>
+  void plan_ranges(long n, int team, long chunk, Tail tail, RangeOf&& range_of) {
+    plan_blocks(n, team, chunk, tail, range_of);
+  }
+
   // The chunks of block [first, end) for chunks of `chunk` indices, as `bounds` (chunk k is
   // [bounds[k], bounds[k + 1])): `chunk` indices each, the first chunk what is left (at most
   // `chunk`); with a shrinking tail, from the back two of the shortest length, then each twice

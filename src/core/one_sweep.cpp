@@ -25,14 +25,20 @@
 // between steps that moves particles or sets a velocity forgets the bound. In a dense packing the
 // bound holds in all but about the last step before each selection.
 //
-// Threads: each takes its block of the partition (core/thread_partition.hpp) and sweeps it.
+// Threads: each takes its block of the partition (core/thread_partition.hpp) and sweeps it, all
+// but its tail (the last 1 / tail_share of it), which the threads share.
 //   1. It drifts the head of its block, the particles the rows of the blocks before it may reach
-//      (partner_reach_.farthest), and waits for the others.
-//   2. It sweeps its block. A particle that is second in an entry of an earlier block is "late":
-//      its sums are not complete until the other thread's rows are, and that thread's scalar law
-//      may read its velocity and force until then; it is left for stage 3. Late particles lie in
-//      the head.
-//   3. After a second barrier, it gathers and kicks its late particles.
+//      (partner_reach_.farthest), and takes chunks of the tails' drift (core/chunk_queue.hpp),
+//      and waits for the others.
+//   2. It sweeps its block up to the tail. A particle that is second in an entry of an earlier
+//      block is "late": its sums are not complete until the other thread's rows are, and that
+//      thread's scalar law may read its velocity and force until then; it is left for stage 4.
+//      Late particles lie in the head.
+//   3. Without waiting, it takes chunks of the tails' rows and wall contacts: its own tail's from
+//      the front, the others' from their backs. A block that takes longer in this step (the
+//      threads' speeds vary from step to step) thus hands part of its tail over.
+//   4. After a second barrier, it gathers and kicks its late particles, and takes chunks of the
+//      tails' sums and kicks.
 #include <omp.h>
 
 #include <algorithm>
@@ -48,6 +54,9 @@ namespace grainlab {
 // speed at 8 and 16 threads, in every workload from 11.6k to 745k beads (docs/performance.md
 // sec. 31): there the stages share their chunks, and the sweep's blocks are fixed.
 constexpr int one_sweep_automatic_threads = 2;
+// On more than one thread the last 1 / tail_share of each block runs as stages shared among the
+// threads (sweep_step, stages 3 and 4).
+constexpr long tail_share = 8;
 
 void Simulation::choose_one_sweep() {
   const bool pays = one_sweep_pays(partner_reach_.mean, partner_reach_.farthest, l2_cache_bytes(),
@@ -111,6 +120,17 @@ void Simulation::sweep_step() {
   prepare_wall_lanes();
   const int team = step_team(n);
   partition_.plan(n, team);
+  // The blocks' tails (the last tail_share of each), left to stages 3 and 4 and shared there.
+  const auto tail_of = [&](const IndexBlock& b) {
+    return IndexBlock{b.end - (b.end - b.first) / tail_share, b.end};
+  };
+  if (team > 1) {
+    const auto tail_of_thread = [&](int t) { return tail_of(partition_.block(t)); };
+    const long chunk = stage_chunk(n / tail_share, team);
+    record_chunks_.plan_ranges(n, team, chunk, chunk_tail_, tail_of_thread);
+    contact_chunks_.plan_ranges(n, team, chunk, chunk_tail_, tail_of_thread);
+    particle_chunks_.plan_ranges(n, team, chunk, chunk_tail_, tail_of_thread);
+  }
   int stale = 0;
   double displacement2 = 0.0, scale2 = 0.0, max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
@@ -122,6 +142,10 @@ void Simulation::sweep_step() {
     reduction(+ : handed_back, walls_handed_back) if (team > 1)
   {
     const IndexBlock block = partition_.thread_block_of(n);
+    // (the tails only where the team is the one they were planned for: a region may have fewer
+    // threads than asked for)
+    const bool tails = team > 1 && omp_get_num_threads() == partition_.team();
+    const long tail_first = tails ? tail_of(block).first : block.end;
     // time on the block, the barriers left out
     double busy = 0.0, since = timed ? timer.thread_begins() : omp_get_wtime();
     const auto wait_for_the_others = [&](StepPhaseTimes::Part stage) {
@@ -144,29 +168,70 @@ void Simulation::sweep_step() {
         drifted = end;
       }
     };
-    // 1. the head, which the rows of the blocks before this one may reach
-    drift_to(std::min(block.end, block.first + ahead));
+    // 1. the head, which the rows of the blocks before this one may reach, and the tails, whose
+    // rows any thread may compute from stage 2 on (shared: core/chunk_queue.hpp)
+    drift_to(std::min(tail_first, block.first + ahead));
+    ChunkQueue::OwnWork own_drift, own_rows, own_sums;
+    const double head_busy = busy + (omp_get_wtime() - since);
+    if (tails)
+      own_drift = record_chunks_.drain([&](long first, long end) {
+        for (long f = first; f < end; f += drift_tile) {
+          const long e = std::min(end, f + drift_tile);
+          particle_passes_.kick_and_drift(pass, f, e, true, tally);
+          write_particle_records(dt, {f, e});
+        }
+      });
     wait_for_the_others(StepPhaseTimes::sweep_head);
+    // (a thread's speed is its time on its own particles: the others' chunks left out)
+    if (tails) busy = head_busy + own_drift.seconds;
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
     // half kick right after its row
-    for (long first = block.first; first < block.end; first += force_tile) {
-      const long end = std::min(block.end, first + force_tile);
-      drift_to(std::min(block.end, end + ahead));
+    for (long first = block.first; first < tail_first; first += force_tile) {
+      const long end = std::min(tail_first, first + force_tile);
+      drift_to(std::min(tail_first, end + ahead));
       max_fraction = std::max({max_fraction, compute_pair_forces(dt, {first, end}, handed_back),
                                compute_wall_forces(dt, {first, end}, walls_handed_back)});
       close_particles(first, end, block.first, false, max_speed2, next_speed2);
     }
-    wait_for_the_others(StepPhaseTimes::sweep_block);
+    drift_to(tail_first);  // (the core, where the rows' lead has not reached its end)
+    // 3. the tails' rows and wall contacts, each thread from its own and then from the others'
+    // backs (core/chunk_queue.hpp), without waiting for the others' blocks: how long a block
+    // takes varies from step to step, and the blocks alone had left one thread waiting for the
+    // other 3 to 6 % of the step on 2 threads (docs/performance.md sec. 33). A tail's rows read
+    // particles of the tail and of the next block's head, drifted in stage 1, and none of them
+    // has had its second half kick: the head's particles they reach are late. The particles of
+    // a tail are second in entries of the tail and of the rows before it, so all their sums
+    // wait for stage 4.
+    if (tails) {
+      const double core_done = omp_get_wtime();
+      busy += core_done - since;
+      if (timed) timer.add(StepPhaseTimes::sweep_block, core_done - since);
+      const double block_busy = busy;
+      own_rows = contact_chunks_.drain([&](long first, long end) {
+        max_fraction = std::max({max_fraction, compute_pair_forces(dt, {first, end}, handed_back),
+                                 compute_wall_forces(dt, {first, end}, walls_handed_back)});
+      });
+      since = core_done;
+      wait_for_the_others(StepPhaseTimes::sweep_tails);
+      busy = block_busy;
+    } else {
+      wait_for_the_others(StepPhaseTimes::sweep_block);
+    }
     // The walls' totals, serial in entry order (their bits), by the first thread, whose block has
     // no late particles, while the others sum theirs. After the region they had cost 41 µs per
     // step of 139,632 beads (docs/performance.md sec. 33).
     if (omp_get_thread_num() == 0) gather_walls();
-    // 3. the late particles, now that every row is done
-    close_particles(block.first, std::min(block.end, block.first + ahead), block.first, true,
+    // 4. the late particles, now that every row is done, and the tails' sums and half kicks
+    close_particles(block.first, std::min(tail_first, block.first + ahead), block.first, true,
                     max_speed2, next_speed2);
     busy += omp_get_wtime() - since;
+    if (tails)
+      own_sums = particle_chunks_.drain([&](long first, long end) {
+        close_particles(first, end, 0, false, max_speed2, next_speed2);
+      });
     if (timed) timer.last_work(StepPhaseTimes::sweep_late, since);
-    partition_.record(omp_get_thread_num(), block.end - block.first, busy);
+    partition_.record(omp_get_thread_num(), block.end - block.first,
+                      busy + own_rows.seconds + own_sums.seconds);
     stale |= tally.stale;
     displacement2 = std::max(displacement2, tally.displacement2);
     scale2 = std::max(scale2, tally.scale2);

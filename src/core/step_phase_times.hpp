@@ -34,9 +34,11 @@ class StepPhaseTimes {
     gather_wait,    //   the region's end
     sweep_head,     // one sweep (core/one_sweep.cpp): 1. the head of the block
     sweep_head_wait,
-    sweep_block,  // 2. the block's rows, sums and half kicks
+    sweep_block,  // 2. the block's rows, sums and half kicks (its tail left)
     sweep_block_wait,
-    sweep_late,  // 3. the late particles
+    sweep_tails,  // 3. the blocks' tails: rows and wall contacts, shared
+    sweep_tails_wait,
+    sweep_late,  // 4. the late particles, and the tails' sums and half kicks, shared
     sweep_late_wait,
     thread_parts,
     // the stepping thread's, outside the regions
@@ -45,9 +47,10 @@ class StepPhaseTimes {
     part_count
   };
   static constexpr std::array<const char*, part_count> names{
-      "region start", "drift",       "  wait", "records",      "  wait",       "contacts",
-      "  wait",       "gather",      "  wait", "sweep: head",  "  wait",       "sweep: block",
-      "  wait",       "sweep: late", "  wait", "list updates", "serial, other"};
+      "region start", "drift",        "  wait",       "records",      "  wait",
+      "contacts",     "  wait",       "gather",       "  wait",       "sweep: head",
+      "  wait",       "sweep: block", "  wait",       "sweep: tails", "  wait",
+      "sweep: late",  "  wait",       "list updates", "serial, other"};
 
   bool on() const { return on_; }
   // Switches the timers on (zeroed, room for `most_threads`) or off.
