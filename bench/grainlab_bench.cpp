@@ -177,9 +177,11 @@ int main(int argc, char** argv) {
   app.add_flag("--phase-times", phase_times,
                "time each thread's stages of the timed steps and its waits after them, and print "
                "them after the run (core/step_phase_times.hpp; the same results)");
-  app.add_option("--chunk-tail", chunk_tail,
-                 "even | shrinking: the force stages' chunks at the back of each thread's block "
-                 "(core/chunk_queue.hpp; the same results)")
+  app.add_option(
+         "--chunk-tail", chunk_tail,
+         "even | shrinking: the chunks at the back of each thread's block in the force stages "
+         "and of the swept steps' tails "
+         "(core/chunk_queue.hpp; the same results)")
       ->check(CLI::IsMember({"even", "shrinking"}));
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "

@@ -65,18 +65,20 @@ class ChunkQueue {
   }
 
   // The same with ranges of [0, n) of any length, one per thread of `team`, in order (the tails
-  // of the blocks of a step run as one sweep, core/one_sweep.cpp). Only the planned team may
-  // drain it: another team would take the blocks of [0, n).
+  // of the blocks of a step run as one sweep, core/one_sweep.cpp). Drained by a team other than
+  // the planned one, its first thread takes every range whole.
   template <class RangeOf>
   void plan_ranges(long n, int team, long chunk, Tail tail, RangeOf&& range_of) {
     plan_blocks(n, team, chunk, tail, range_of);
+    ranges_ = true;
   }
 
   // The chunks of block [first, end) for chunks of `chunk` indices, as `bounds` (chunk k is
   // [bounds[k], bounds[k + 1])): `chunk` indices each, the first chunk what is left (at most
   // `chunk`); with a shrinking tail, from the back two of the shortest length, then each twice
-  // the one behind it up to `chunk`. The shortest is an eighth of `chunk`, and at least 32
-  // indices (a chunk's rows end in a part-filled batch of the vectorised kernel).
+  // the one behind it up to `chunk`. The shortest is an eighth of `chunk`, at least 32
+  // indices (a chunk's rows end in a part-filled batch of the vectorised kernel) and at most
+  // `chunk`.
   static void chunk_bounds(long first, long end, long chunk, Tail tail, std::vector<long>& bounds) {
     bounds.clear();
     bounds.push_back(end);
@@ -102,15 +104,21 @@ class ChunkQueue {
 
   // Inside the region, by every thread of the team: calls chunk(first, end) for every chunk of
   // its own block not taken by others, then for others' chunks while their owners lag; the team
-  // together takes every index of [0, n) exactly once. What the chunks write is visible to the
-  // other threads after the next barrier.
-  // Returns what the thread did on its own block (the time it took to do it: a thread's speed,
-  // core/thread_partition.hpp).
+  // together takes every index of [0, n) (of the ranges, after plan_ranges) exactly once. What the
+  // chunks write is visible to the other threads after the next barrier. Returns what the thread
+  // did on its own block (the time it took to do it: a thread's speed, core/thread_partition.hpp).
   template <class F>
   OwnWork drain(F&& chunk) {
     const int team = omp_get_num_threads(), me = omp_get_thread_num();
     OwnWork own_work;
     if (team != team_) {  // not the planned team: no sharing, each thread its own block
+      if (ranges_) {      // (the ranges, by the first thread)
+        if (me == 0)
+          for (int t = 0; t < team_; ++t)
+            if (cursors_[t].bounds.front() < cursors_[t].bounds.back())
+              chunk(cursors_[t].bounds.front(), cursors_[t].bounds.back());
+        return own_work;
+      }
       const IndexBlock b = thread_block(n_);
       if (b.first < b.end) chunk(b.first, b.end);
       return own_work;
@@ -168,7 +176,7 @@ class ChunkQueue {
       cursors_ = std::make_unique<Cursor[]>(team);
       capacity_ = team;
     }
-    n_ = n, team_ = team;
+    n_ = n, team_ = team, ranges_ = false;
     long length = std::max(1L, chunk);
     // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 100
     // chunks is taken in longer chunks)
@@ -187,6 +195,7 @@ class ChunkQueue {
   std::unique_ptr<Cursor[]> cursors_;
   int capacity_ = 0, team_ = 0;
   long n_ = 0;
+  bool ranges_ = false;  // planned by plan_ranges
 };
 
 // The chunk size for n indices on a team: about 8 chunks per thread, so that the last ones can

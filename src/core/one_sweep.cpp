@@ -33,7 +33,8 @@
 //   2. It sweeps its block up to the tail. A particle that is second in an entry of an earlier
 //      block is "late": its sums are not complete until the other thread's rows are, and that
 //      thread's scalar law may read its velocity and force until then; it is left for stage 4.
-//      Late particles lie in the head.
+//      Late particles lie within `ahead` of the block's start (in its tail too, where the
+//      block is that short).
 //   3. Without waiting, it takes chunks of the tails' rows and wall contacts: its own tail's from
 //      the front, the others' from their backs. A block that takes longer in this step (the
 //      threads' speeds vary from step to step) thus hands part of its tail over.
@@ -52,10 +53,11 @@ namespace grainlab {
 // The most threads a step runs as one sweep with automatically. Measured on 1 and 2 threads
 // (the 2-core development VM). On a 16-core Xeon the sweep ran at 0.84 to 0.97 of the stages'
 // speed at 8 and 16 threads, in every workload from 11.6k to 745k beads (docs/performance.md
-// sec. 31): there the stages share their chunks, and the sweep's blocks are fixed.
+// sec. 31): there the stages share their chunks, and the sweep's blocks were fixed (it shares
+// only their tails since sec. 33, not measured on 16 cores).
 constexpr int one_sweep_automatic_threads = 2;
-// On more than one thread the last 1 / tail_share of each block runs as stages shared among the
-// threads (sweep_step, stages 3 and 4).
+// On more than one thread the last 1 / tail_share of each block is shared among the threads: its
+// drift in stage 1, its rows in stage 3 and its sums and kicks in stage 4 (sweep_step).
 constexpr long tail_share = 8;
 
 void Simulation::choose_one_sweep() {
@@ -120,7 +122,7 @@ void Simulation::sweep_step() {
   prepare_wall_lanes();
   const int team = step_team(n);
   partition_.plan(n, team);
-  // The blocks' tails (the last tail_share of each), left to stages 3 and 4 and shared there.
+  // The blocks' tails (the last 1 / tail_share of each), shared in stages 1, 3 and 4.
   const auto tail_of = [&](const IndexBlock& b) {
     return IndexBlock{b.end - (b.end - b.first) / tail_share, b.end};
   };
@@ -183,7 +185,7 @@ void Simulation::sweep_step() {
       });
     wait_for_the_others(StepPhaseTimes::sweep_head);
     // (a thread's speed is its time on its own particles: the others' chunks left out)
-    if (tails) busy = head_busy + own_drift.seconds;
+    if (tails) busy = head_busy;
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
     // half kick right after its row
     for (long first = block.first; first < tail_first; first += force_tile) {
@@ -193,13 +195,13 @@ void Simulation::sweep_step() {
                                compute_wall_forces(dt, {first, end}, walls_handed_back)});
       close_particles(first, end, block.first, false, max_speed2, next_speed2);
     }
-    drift_to(tail_first);  // (the core, where the rows' lead has not reached its end)
     // 3. the tails' rows and wall contacts, each thread from its own and then from the others'
     // backs (core/chunk_queue.hpp), without waiting for the others' blocks: how long a block
     // takes varies from step to step, and the blocks alone had left one thread waiting for the
     // other 3 to 6 % of the step on 2 threads (docs/performance.md sec. 33). A tail's rows read
-    // particles of the tail and of the next block's head, drifted in stage 1, and none of them
-    // has had its second half kick: the head's particles they reach are late. The particles of
+    // particles up to `ahead` further on: of the tails and of later blocks' heads, all drifted in
+    // stage 1, and none of them kicked before stage 4 (the heads' particles they reach are
+    // late). The particles of
     // a tail are second in entries of the tail and of the rows before it, so all their sums
     // wait for stage 4.
     if (tails) {
@@ -220,18 +222,27 @@ void Simulation::sweep_step() {
     // The walls' totals, serial in entry order (their bits), by the first thread, whose block has
     // no late particles, while the others sum theirs. After the region they had cost 41 µs per
     // step of 139,632 beads (docs/performance.md sec. 33).
-    if (omp_get_thread_num() == 0) gather_walls();
+    // (not a thread's own work: left out of its speed)
+    double walls_seconds = 0.0;
+    if (omp_get_thread_num() == 0) {
+      const double start = omp_get_wtime();
+      gather_walls();
+      walls_seconds = omp_get_wtime() - start;
+    }
     // 4. the late particles, now that every row is done, and the tails' sums and half kicks
     close_particles(block.first, std::min(tail_first, block.first + ahead), block.first, true,
                     max_speed2, next_speed2);
-    busy += omp_get_wtime() - since;
+    busy += omp_get_wtime() - since - walls_seconds;
     if (tails)
       own_sums = particle_chunks_.drain([&](long first, long end) {
         close_particles(first, end, 0, false, max_speed2, next_speed2);
       });
     if (timed) timer.last_work(StepPhaseTimes::sweep_late, since);
-    partition_.record(omp_get_thread_num(), block.end - block.first,
-                      busy + own_rows.seconds + own_sums.seconds);
+    // (the particles a thread carried through the step: its core, and its share of the tails'
+    // three stages, counted a third each)
+    const long own_tail = (own_drift.count + own_rows.count + own_sums.count) / 3;
+    partition_.record(omp_get_thread_num(), (tail_first - block.first) + own_tail,
+                      busy + own_drift.seconds + own_rows.seconds + own_sums.seconds);
     stale |= tally.stale;
     displacement2 = std::max(displacement2, tally.displacement2);
     scale2 = std::max(scale2, tally.scale2);

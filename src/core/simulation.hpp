@@ -7,6 +7,7 @@
 // The core knows nothing of laboratory tests; controllers change wall velocities between steps.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -143,7 +144,9 @@ class Simulation {
   void set_chunk_tail(ChunkQueue::Tail tail) { chunk_tail_ = tail; }
   // Per-thread times of the step's stages and waits, from now on (zeroed) or no more
   // (core/step_phase_times.hpp; the same results either way).
-  void time_step_phases(bool on) { phase_times_.switch_on(on, omp_get_max_threads()); }
+  void time_step_phases(bool on) {
+    phase_times_.switch_on(on, std::max(omp_get_max_threads(), omp_get_num_procs()));
+  }
   const StepPhaseTimes& step_phase_times() const { return phase_times_; }
 
   double kinetic_energy() const;     // translational + rotational, J

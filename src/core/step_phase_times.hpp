@@ -32,7 +32,7 @@ class StepPhaseTimes {
     contacts_wait,  //   the barrier after them
     gather,         // the particles' sums and closing half kick (thread 0: the walls' totals)
     gather_wait,    //   the region's end
-    sweep_head,     // one sweep (core/one_sweep.cpp): 1. the head of the block
+    sweep_head,     // one sweep (core/one_sweep.cpp): 1. the head, and chunks of the tails' drift
     sweep_head_wait,
     sweep_block,  // 2. the block's rows, sums and half kicks (its tail left)
     sweep_block_wait,
@@ -124,6 +124,8 @@ class StepPhaseTimes {
     std::array<double, part_count> t{};
     double last = 0.0;
   };
+  // (Simulation::time_step_phases makes a slot for every processor, more than a team can have;
+  // the modulo only keeps a larger team inside the array)
   Slot& slot() { return slots_[static_cast<size_t>(omp_get_thread_num()) % slots_.size()]; }
   double sum_over_threads(Part part) const {
     double s = 0.0;

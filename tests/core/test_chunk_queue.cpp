@@ -159,3 +159,29 @@ TEST(ChunkQueue, ChunkSizeGivesEachThreadSeveralChunks) {
   EXPECT_EQ(stage_chunk(1000, 16), 64);       // never below 64
   EXPECT_EQ(stage_chunk(1000000, 16), 1024);  // never above 1,024
 }
+
+// Ranges of any length, one per thread (the tails of a swept step's blocks): every index of the
+// ranges is taken exactly once and no other, by the planned team and, whole by its first thread,
+// by another team.
+TEST(ChunkQueue, PlannedRangesAreTakenExactlyOnce) {
+  const long n = 10000;
+  const std::vector<IndexBlock> ranges{{1000, 1700}, {2500, 2500}, {6000, 9000}};
+  for (int team : {3, 2, 1})
+    for (ChunkQueue::Tail tail : {ChunkQueue::Tail::even, ChunkQueue::Tail::shrinking}) {
+      SCOPED_TRACE(testing::Message() << "team " << team);
+      ChunkQueue q;
+      q.plan_ranges(n, 3, 64, tail, [&](int t) { return ranges[t]; });
+      std::vector<int> times(n, 0);
+#pragma omp parallel num_threads(team)
+      q.drain([&](long first, long end) {
+        for (long i = first; i < end; ++i) {
+#pragma omp atomic
+          ++times[i];
+        }
+      });
+      for (long i = 0; i < n; ++i) {
+        const bool in_a_range = (i >= 1000 && i < 1700) || (i >= 6000 && i < 9000);
+        ASSERT_EQ(times[i], in_a_range ? 1 : 0) << "index " << i;
+      }
+    }
+}
