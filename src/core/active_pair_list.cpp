@@ -4,7 +4,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <numeric>
 
 #include "core/neighbor_search.hpp"
 
@@ -13,29 +12,6 @@ namespace {
 
 // Below this many rows a pass of the selection runs on one thread.
 constexpr long parallel_rows = 4 * parallel_threshold;
-
-// A CSR index (rows' or columns' starts) from counts to their running sums: starts[k + 1] holds
-// the count of row k, starts[0] = 0. Each thread sums its own part, then adds the totals of the
-// parts before it. Integer sums: the same for any thread count.
-void sum_counts(std::vector<uint32_t>& starts) {
-  std::vector<uint32_t>& row_start = starts;
-  const long n = static_cast<long>(row_start.size());
-  const int team = n > parallel_rows ? omp_get_max_threads() : 1;
-  std::vector<uint32_t> part_total(static_cast<size_t>(team) + 1, 0);
-#pragma omp parallel num_threads(team) if (team > 1)
-  {
-    const long t = omp_get_thread_num(), threads = omp_get_num_threads();
-    const long first = n * t / threads, end = n * (t + 1) / threads;
-    uint32_t sum = 0;
-    for (long k = first; k < end; ++k) sum = row_start[k] += sum;
-    part_total[t + 1] = sum;
-#pragma omp barrier
-    uint32_t before = 0;
-    for (long s = 0; s <= t; ++s) before += part_total[s];
-    if (before != 0)
-      for (long k = first; k < end; ++k) row_start[k] += before;
-  }
-}
 
 // A vector about to be written whole: sized to n, its old values left where its storage
 // suffices (the list's arrays are written anew at every selection; zeroing them first would
@@ -157,9 +133,7 @@ void NeighborSearch::select_active(const ParticleStore& p, const PairContacts& o
   size_to_overwrite(candidate_of, m);
   size_to_overwrite(active.partner, m);
   active.sliding_spring.resize(m);
-  active.rolling_angle.assign(pieces.rolling ? m : 0, Vec3{});
-  active.twisting_angle.assign(pieces.twisting ? m : 0, 0.0);
-  active.rolling_force_displacement.assign(pieces.rolling_force ? m : 0, Vec3{});
+  size_optional_histories(active, m, pieces);
   long farthest = 0;  // the farthest a partner lies after its row (index_columns)
 #pragma omp parallel for schedule(static) reduction(max : farthest) if (n > parallel_rows)
   for (long i = 0; i < n; ++i) {
@@ -172,12 +146,7 @@ void NeighborSearch::select_active(const ParticleStore& p, const PairContacts& o
       active.partner[e] = j;
       farthest = std::max(farthest, static_cast<long>(j) - i);
       active.sliding_spring[e] = from != no_old_entry ? old.sliding_spring[from] : Vec3{};
-      if (from != no_old_entry) {
-        if (pieces.rolling) active.rolling_angle[e] = old.rolling_angle[from];
-        if (pieces.twisting) active.twisting_angle[e] = old.twisting_angle[from];
-        if (pieces.rolling_force)
-          active.rolling_force_displacement[e] = old.rolling_force_displacement[from];
-      }
+      if (from != no_old_entry) copy_optional_histories(old, from, active, e, pieces);
       ++e;
     }
   }

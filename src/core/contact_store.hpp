@@ -23,6 +23,11 @@ namespace grainlab {
 // (core/contact_store.cpp).
 void index_rows_of_entries(const std::vector<uint32_t>& row_start, std::vector<uint32_t>& row);
 
+// A CSR index (rows', columns' or cells' starts) from counts to their running sums: starts[k + 1]
+// holds the count of row k, starts[0] = 0. Each thread sums its own part, then adds the totals of
+// the parts before it. Integer sums: the same for any thread count (core/contact_store.cpp).
+void sum_counts(std::vector<uint32_t>& starts);
+
 // What the last force evaluation of one pair entry left for the gather, in one cache line. The
 // gather reads each entry twice, once for each body, and the second read lies in another
 // particle's row: out of the caches that costs a line per entry, where force and torques in

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <type_traits>
 
 namespace grainlab {
@@ -71,10 +70,10 @@ std::vector<uint32_t> NeighborSearch::bin_and_sort(ParticleStore& p) {
     }
     cell[i] = static_cast<uint32_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
   }
-  // (a counting sort, in the particles' order: serial, a few passes over N integers)
+  // (a counting sort, in the particles' order: its count and fill serial, passes over N integers)
   cell_start_.assign(static_cast<size_t>(total) + 1, 0);
   for (long i = 0; i < n; ++i) ++cell_start_[cell[i] + 1];
-  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+  sum_counts(cell_start_);
   std::vector<uint32_t> order(n);
   std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (long i = 0; i < n; ++i) order[fill[cell[i]]++] = static_cast<uint32_t>(i);
@@ -126,7 +125,7 @@ void NeighborSearch::build_pairs(const ParticleStore& p, PairContacts& pairs) co
     for_each_partner(i, [&](uint32_t) { ++count; });
     pairs.row_start[i + 1] = count;
   }
-  std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
+  sum_counts(pairs.row_start);
   pairs.partner.resize(pairs.row_start[n]);
 #pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
@@ -151,7 +150,7 @@ void NeighborSearch::build_wall_candidates(const ParticleStore& p, const std::ve
     for_each_wall(i, [&](uint16_t) { ++count; });
     c.row_start[i + 1] = count;
   }
-  std::partial_sum(c.row_start.begin(), c.row_start.end(), c.row_start.begin());
+  sum_counts(c.row_start);
   c.wall.resize(c.row_start[n]);
 #pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (long i = 0; i < n; ++i) {
@@ -242,9 +241,7 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
   const size_t mw = wall_contacts.size();
   WallContacts& fresh = wall_contacts;
   fresh.sliding_spring.assign(mw, Vec3{});
-  fresh.rolling_angle.assign(pieces.rolling ? mw : 0, Vec3{});
-  fresh.twisting_angle.assign(pieces.twisting ? mw : 0, 0.0);
-  fresh.rolling_force_displacement.assign(pieces.rolling_force ? mw : 0, Vec3{});
+  size_optional_histories(fresh, mw, pieces);
   if (walls_carried) {
 #pragma omp parallel for schedule(static) if (n > parallel_threshold)
     for (long i = 0; i < n; ++i)
@@ -253,10 +250,7 @@ void NeighborSearch::rebuild(ParticleStore& p, const std::vector<Wall>& walls, P
             old_wall_entry(old_walls, order, static_cast<uint32_t>(i), fresh.wall[e]);
         if (from == no_old_entry) continue;
         fresh.sliding_spring[e] = old_walls.sliding_spring[from];
-        if (pieces.rolling) fresh.rolling_angle[e] = old_walls.rolling_angle[from];
-        if (pieces.twisting) fresh.twisting_angle[e] = old_walls.twisting_angle[from];
-        if (pieces.rolling_force)
-          fresh.rolling_force_displacement[e] = old_walls.rolling_force_displacement[from];
+        copy_optional_histories(old_walls, from, fresh, e, pieces);
       }
   }
   // and the old histories before the results are allocated

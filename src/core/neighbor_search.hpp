@@ -46,6 +46,25 @@ inline double verlet_skin(double diameter) {
 // stay rare next to the steps.
 constexpr double default_list_skin_fraction = 0.05;
 
+// The optional histories of a pair or wall store (rolling, twisting, rolling force): sized to m
+// entries, zero, where the pieces in use need them, and empty otherwise.
+template <class Store>
+void size_optional_histories(Store& s, size_t m, ContactPieces pieces) {
+  s.rolling_angle.assign(pieces.rolling ? m : 0, Vec3{});
+  s.twisting_angle.assign(pieces.twisting ? m : 0, 0.0);
+  s.rolling_force_displacement.assign(pieces.rolling_force ? m : 0, Vec3{});
+}
+
+// Entry `from` of `old`'s optional histories, for the pieces in use, into entry `to` of `fresh`.
+template <class Store>
+void copy_optional_histories(const Store& old, uint32_t from, Store& fresh, size_t to,
+                             ContactPieces pieces) {
+  if (pieces.rolling) fresh.rolling_angle[to] = old.rolling_angle[from];
+  if (pieces.twisting) fresh.twisting_angle[to] = old.twisting_angle[from];
+  if (pieces.rolling_force)
+    fresh.rolling_force_displacement[to] = old.rolling_force_displacement[from];
+}
+
 class NeighborSearch {
  public:
   // list_skin: the active list's skin (<= skin); equal to skin, the active list is every

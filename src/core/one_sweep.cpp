@@ -148,11 +148,13 @@ void Simulation::sweep_step() {
     // threads than asked for)
     const bool tails = team > 1 && omp_get_num_threads() == partition_.team();
     const long tail_first = tails ? tail_of(block).first : block.end;
-    // time on the block, the barriers left out
+    // `busy`: the time on its own particles (a thread's speed, core/thread_partition.hpp), the
+    // others' chunks and the barriers left out; `since`: when the current stage began.
     double busy = 0.0, since = timed ? timer.thread_begins() : omp_get_wtime();
+    const auto own_work_since = [&](double start) { busy += omp_get_wtime() - start; };
+    // (the stage's time and the barrier's for the timers)
     const auto wait_for_the_others = [&](StepPhaseTimes::Part stage) {
       const double done = omp_get_wtime();
-      busy += done - since;
       if (timed) timer.add(stage, done - since);
 #pragma omp barrier
       since = omp_get_wtime();
@@ -173,8 +175,8 @@ void Simulation::sweep_step() {
     // 1. the head, which the rows of the blocks before this one may reach, and the tails, whose
     // rows any thread may compute from stage 2 on (shared: core/chunk_queue.hpp)
     drift_to(std::min(tail_first, block.first + ahead));
+    own_work_since(since);
     ChunkQueue::OwnWork own_drift, own_rows, own_sums;
-    const double head_busy = busy + (omp_get_wtime() - since);
     if (tails)
       own_drift = record_chunks_.drain([&](long first, long end) {
         for (long f = first; f < end; f += drift_tile) {
@@ -184,8 +186,6 @@ void Simulation::sweep_step() {
         }
       });
     wait_for_the_others(StepPhaseTimes::sweep_head);
-    // (a thread's speed is its time on its own particles: the others' chunks left out)
-    if (tails) busy = head_busy;
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
     // half kick right after its row
     for (long first = block.first; first < tail_first; first += force_tile) {
@@ -195,27 +195,24 @@ void Simulation::sweep_step() {
                                compute_wall_forces(dt, {first, end}, walls_handed_back)});
       close_particles(first, end, block.first, false, max_speed2, next_speed2);
     }
+    const double core_done = omp_get_wtime();
+    busy += core_done - since;
     // 3. the tails' rows and wall contacts, each thread from its own and then from the others'
     // backs (core/chunk_queue.hpp), without waiting for the others' blocks: how long a block
     // takes varies from step to step, and the blocks alone had left one thread waiting for the
     // other 3 to 6 % of the step on 2 threads (docs/performance.md sec. 33). A tail's rows read
     // particles up to `ahead` further on: of the tails and of later blocks' heads, all drifted in
     // stage 1, and none of them kicked before stage 4 (the heads' particles they reach are
-    // late). The particles of
-    // a tail are second in entries of the tail and of the rows before it, so all their sums
-    // wait for stage 4.
+    // late). The particles of a tail are second in entries of the tail and of the rows before
+    // it, so all their sums wait for stage 4.
     if (tails) {
-      const double core_done = omp_get_wtime();
-      busy += core_done - since;
       if (timed) timer.add(StepPhaseTimes::sweep_block, core_done - since);
-      const double block_busy = busy;
+      since = core_done;
       own_rows = contact_chunks_.drain([&](long first, long end) {
         max_fraction = std::max({max_fraction, compute_pair_forces(dt, {first, end}, handed_back),
                                  compute_wall_forces(dt, {first, end}, walls_handed_back)});
       });
-      since = core_done;
       wait_for_the_others(StepPhaseTimes::sweep_tails);
-      busy = block_busy;
     } else {
       wait_for_the_others(StepPhaseTimes::sweep_block);
     }
@@ -223,16 +220,12 @@ void Simulation::sweep_step() {
     // no late particles, while the others sum theirs. After the region they had cost 41 µs per
     // step of 139,632 beads (docs/performance.md sec. 33).
     // (not a thread's own work: left out of its speed)
-    double walls_seconds = 0.0;
-    if (omp_get_thread_num() == 0) {
-      const double start = omp_get_wtime();
-      gather_walls();
-      walls_seconds = omp_get_wtime() - start;
-    }
+    if (omp_get_thread_num() == 0) gather_walls();
     // 4. the late particles, now that every row is done, and the tails' sums and half kicks
+    const double late_start = omp_get_wtime();
     close_particles(block.first, std::min(tail_first, block.first + ahead), block.first, true,
                     max_speed2, next_speed2);
-    busy += omp_get_wtime() - since - walls_seconds;
+    own_work_since(late_start);
     if (tails)
       own_sums = particle_chunks_.drain([&](long first, long end) {
         close_particles(first, end, 0, false, max_speed2, next_speed2);

@@ -112,7 +112,6 @@ class StepPhaseTimes {
   // Seconds in `part`: the mean and the largest over the threads (the stepping thread's own for
   // the parts outside the regions).
   double mean(Part part) const { return sum_over_threads(part) / divisor(part); }
-  double of_thread(Part part, int thread) const { return slots_[thread].t[part]; }
   double largest(Part part) const {
     double m = 0.0;
     for (int k = 0; k < team_seen_; ++k) m = std::max(m, slots_[k].t[part]);
