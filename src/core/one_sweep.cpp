@@ -152,14 +152,6 @@ void Simulation::sweep_step() {
     // others' chunks and the barriers left out; `since`: when the current stage began.
     double busy = 0.0, since = timed ? timer.thread_begins() : omp_get_wtime();
     const auto own_work_since = [&](double start) { busy += omp_get_wtime() - start; };
-    // (the stage's time and the barrier's for the timers)
-    const auto wait_for_the_others = [&](StepPhaseTimes::Part stage) {
-      const double done = omp_get_wtime();
-      if (timed) timer.add(stage, done - since);
-#pragma omp barrier
-      since = omp_get_wtime();
-      if (timed) timer.add(static_cast<StepPhaseTimes::Part>(stage + 1), since - done);
-    };
     // The first half kick and the drift of the particles up to `target` (kick_and_drift's
     // arithmetic and its list test), with their records.
     long drifted = block.first;
@@ -185,7 +177,7 @@ void Simulation::sweep_step() {
           write_particle_records(dt, {f, e});
         }
       });
-    wait_for_the_others(StepPhaseTimes::sweep_head);
+    timer.barrier_after(StepPhaseTimes::sweep_head, since);
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and
     // half kick right after its row
     for (long first = block.first; first < tail_first; first += force_tile) {
@@ -212,9 +204,9 @@ void Simulation::sweep_step() {
         max_fraction = std::max({max_fraction, compute_pair_forces(dt, {first, end}, handed_back),
                                  compute_wall_forces(dt, {first, end}, walls_handed_back)});
       });
-      wait_for_the_others(StepPhaseTimes::sweep_tails);
+      timer.barrier_after(StepPhaseTimes::sweep_tails, since);
     } else {
-      wait_for_the_others(StepPhaseTimes::sweep_block);
+      timer.barrier_after(StepPhaseTimes::sweep_block, since);
     }
     // The walls' totals, serial in entry order (their bits), by the first thread, whose block has
     // no late particles, while the others sum theirs. After the region they had cost 41 µs per

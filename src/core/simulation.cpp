@@ -257,23 +257,17 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
     reduction(+ : handed_back, walls_handed_back) if (parallel)
   {
     double since = timed ? timer.thread_begins() : 0.0;
-    // (the timers' barrier: the time before it is the stage's, after it the wait's)
-    const auto barrier_after = [&](StepPhaseTimes::Part stage) {
-      if (timed) since = timer.add_since(stage, since);
-#pragma omp barrier
-      if (timed) since = timer.add_since(static_cast<StepPhaseTimes::Part>(stage + 1), since);
-    };
     if (records) {
       record_chunks_.drain([&](long first, long end) {
         write_particle_records(drift, {first, end});
       });
-      barrier_after(StepPhaseTimes::records);
+      timer.barrier_after(StepPhaseTimes::records, since);
     }
     const ChunkQueue::OwnWork contacts = contact_chunks_.drain([&](long first, long end) {
       max_fraction = std::max({max_fraction, compute_pair_forces(drift, {first, end}, handed_back),
                                compute_wall_forces(drift, {first, end}, walls_handed_back)});
     });
-    barrier_after(StepPhaseTimes::contacts);
+    timer.barrier_after(StepPhaseTimes::contacts, since);
     // The walls' totals, serial in entry order (their bits), by one thread while the others
     // start on the particles' sums: they take its chunks (core/chunk_queue.hpp). After the
     // region, every thread had waited for them: on 16 Xeon threads, 139,632 beads, the step's

@@ -69,14 +69,13 @@ class StepPhaseTimes {
     add(start, t - region_start_);
     return t;
   }
+  // A thread of a region: ends `stage`, begun at `since`, waits at a barrier for the team
+  // (`stage` + 1 is its wait) and sets `since` to the barrier's end. (Out of line, in
+  // core/step_phase_times.cpp: an inline copy in a file compiled without OpenMP would lose its
+  // barrier, and the linker may keep either copy.)
+  void barrier_after(Part stage, double& since);
   // A thread: `part` took it `seconds` more.
   void add(Part part, double seconds) { slot().t[part] += seconds; }
-  // A thread: `part` took it from `since` to now; returns now.
-  double add_since(Part part, double since) {
-    const double t = now();
-    add(part, t - since);
-    return t;
-  }
   // A thread, at its last work in a region: `part` took it from `since` to now, and it waits
   // from now to the region's end.
   void last_work(Part part, double since) {
