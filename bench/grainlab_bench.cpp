@@ -118,9 +118,8 @@ void print_phase_times(const grainlab::StepPhaseTimes& t) {
     const auto part = static_cast<StepPhaseTimes::Part>(k);
     total += t.mean(part);
     if (t.largest(part) == 0.0) continue;  // (stages the steps did not run)
-    fmt::print("          {:<16} {:>10.1f} {:>10.1f}", StepPhaseTimes::names[k],
+    fmt::print("          {:<16} {:>10.1f} {:>10.1f}\n", StepPhaseTimes::names[k],
                t.mean(part) * per_step, t.largest(part) * per_step);
-    fmt::print("\n");
   }
   fmt::print("          {:<16} {:>10.1f}\n", "step (sum)", total * per_step);
 }
@@ -180,8 +179,7 @@ int main(int argc, char** argv) {
   app.add_option(
          "--chunk-tail", chunk_tail,
          "even | shrinking: the chunks at the back of each thread's block in the force stages "
-         "and of the swept steps' tails "
-         "(core/chunk_queue.hpp; the same results)")
+         "and of the swept steps' tails (core/chunk_queue.hpp; the same results)")
       ->check(CLI::IsMember({"even", "shrinking"}));
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
