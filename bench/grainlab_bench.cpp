@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   std::string label = "";
   bool allow_1m = false, no_csv = false, rebuild_peak = false, phase_times = false;
   int refresh_cost = 0, rebuild_cost = 0;
-  std::string one_sweep = "automatic", chunk_tail = "even";
+  std::string one_sweep = "automatic", chunk_tail = "even", drift_sharing = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
                  "thread counts to run (default: 1, 2, 4, ... up to the processor count)")
@@ -183,6 +183,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"even", "shrinking"}));
   app.add_option("--one-sweep", one_sweep,
                  "automatic | always | never: steps as one sweep (core/one_sweep.cpp; the same "
+                 "results)")
+      ->check(CLI::IsMember({"automatic", "always", "never"}));
+  app.add_option("--drift-sharing", drift_sharing,
+                 "automatic | always | never: the drift's particles through a chunk queue "
+                 "(automatic: on 4 threads or more; Simulation::set_drift_sharing, the same "
                  "results)")
       ->check(CLI::IsMember({"automatic", "always", "never"}));
   CLI11_PARSE(app, argc, argv);
@@ -243,6 +248,9 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       Simulation sim = make_simulation(packing, gravity);
       sim.set_one_sweep(sweep_choice);
+      sim.set_drift_sharing(drift_sharing == "always"  ? Simulation::DriftSharing::always
+                            : drift_sharing == "never" ? Simulation::DriftSharing::never
+                                                       : Simulation::DriftSharing::automatic);
       sim.set_chunk_tail(chunk_tail == "shrinking" ? grainlab::ChunkQueue::Tail::shrinking
                                                    : grainlab::ChunkQueue::Tail::even);
       sim.advance(warmup);

@@ -23,7 +23,9 @@
 // contacts' barrier on 16 threads of 139,632 beads, where a chunk takes about 100 µs
 // (docs/performance.md sec. 31). On the 2 threads of the development VM the shrinking tails
 // gained nothing (0.99 of the even ones over 30 interleaved rounds, waits of 4 to 9 µs either
-// way, sec. 33); they are a choice (`grainlab_bench --chunk-tail`) until 16 cores are measured.
+// way, sec. 33), nor on 16 Xeon threads (0.975 on 139,632 beads and 0.996 on 88,400, medians of
+// 5 and 4 interleaved rounds, sec. 34: the waits there come from threads held up anywhere in the
+// step, not only in their last chunk); they stay a choice (`grainlab_bench --chunk-tail`).
 //
 // Which thread computes a chunk never changes the arithmetic of a particle or a contact (each
 // is computed whole, by one thread, from data no other thread writes in that stage), so the

@@ -140,7 +140,17 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   const bool bound = check_particles && one_sweep_wanted_;
   int moved = 0, stale = 0;
   double displacement2 = 0.0, scale2 = 0.0;
-  partition_.plan(n, step_team(n));
+  const int team = step_team(n);
+  partition_.plan(n, team);
+  // On many threads the drift's blocks, sized for the force stages, take unequal times, and a
+  // thread that lags makes the others wait at the region's end (on 16 Xeon threads, 139,632 beads:
+  // 93 us per step of a 167 us drift, docs/performance.md sec. 34): there the others take its last
+  // chunks. A particle's drift is the same whichever thread makes it.
+  const bool shared = shares_drift(team);
+  if (shared) {
+    drift_chunks_.plan(partition_, stage_chunk(n, team), chunk_tail_);
+    ++shared_drift_steps_;
+  }
   StepPhaseTimes& timer = phase_times_;
   const bool timed = timer.on();
   if (timed) timer.region_begins();
@@ -149,18 +159,26 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
     reduction(max                              \
               : displacement2, scale2) if (n > parallel_threshold)
   {
-    const IndexBlock block = partition_.thread_block_of(n);
     const double start = timed ? timer.thread_begins() : omp_get_wtime();
     DriftTally tally;
-    for (long first = block.first; first < block.end; first += tile) {
-      const long end = std::min(block.end, first + tile);
-      particle_passes_.kick_and_drift(pass, first, end, bound, tally);
-      if (records_written) write_particle_records(dt, {first, end});
+    const auto drift = [&](long first_particle, long end_particle) {
+      for (long first = first_particle; first < end_particle; first += tile) {
+        const long end = std::min(end_particle, first + tile);
+        particle_passes_.kick_and_drift(pass, first, end, bound, tally);
+        if (records_written) write_particle_records(dt, {first, end});
+      }
+    };
+    if (shared) {
+      const ChunkQueue::OwnWork own = drift_chunks_.drain(drift);
+      partition_.record(omp_get_thread_num(), own.count, own.seconds);
+    } else {
+      const IndexBlock block = partition_.thread_block_of(n);
+      drift(block.first, block.end);
+      partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
     }
     stale |= tally.stale, moved |= tally.moved;
     displacement2 = std::max(displacement2, tally.displacement2);
     scale2 = std::max(scale2, tally.scale2);
-    partition_.record(omp_get_thread_num(), block.end - block.first, omp_get_wtime() - start);
     if (timed) timer.last_work(StepPhaseTimes::drift, start);
   }
   if (timed) phase_regions_ += timer.region_ends(StepPhaseTimes::drift_wait);

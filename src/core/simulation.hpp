@@ -142,6 +142,14 @@ class Simulation {
   // The chunks at the back of each thread's block in the force stages (core/chunk_queue.hpp;
   // the same results either way).
   void set_chunk_tail(ChunkQueue::Tail tail) { chunk_tail_ = tail; }
+  // Whether the drift's particles go through a chunk queue (core/chunk_queue.hpp: a thread that
+  // is done takes the last chunks of one that lags) or each thread drifts its own block whole:
+  // automatic shares them on teams of shared_drift_team threads or more, always, or never. The
+  // results are the same. Not saved with the state.
+  enum class DriftSharing { automatic, always, never };
+  void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
+  static constexpr int shared_drift_team = 4;
+  long shared_drift_steps() const { return shared_drift_steps_; }  // drifts through the queue
   // Per-thread times of the step's stages and waits, from now on (zeroed) or no more
   // (core/step_phase_times.hpp; the same results either way).
   void time_step_phases(bool on) {
@@ -269,6 +277,14 @@ class Simulation {
   // contacts; gather and half kick): planned afresh at each call.
   ChunkQueue record_chunks_, contact_chunks_, particle_chunks_;
   ChunkQueue::Tail chunk_tail_ = ChunkQueue::Tail::even;
+  // The drift's chunks, where it shares them (set_drift_sharing).
+  ChunkQueue drift_chunks_;
+  DriftSharing drift_sharing_ = DriftSharing::automatic;
+  long shared_drift_steps_ = 0;
+  bool shares_drift(int team) const {
+    return team > 1 && (drift_sharing_ == DriftSharing::always ||
+                        (drift_sharing_ == DriftSharing::automatic && team >= shared_drift_team));
+  }
   // The block each thread starts from in every stage, sized by the threads' measured speeds
   // (planned in kick_and_drift and compute_forces, updated after each step).
   ThreadPartition partition_;
