@@ -142,6 +142,8 @@ int main(int argc, char** argv) {
   bool allow_1m = false, no_csv = false, rebuild_peak = false, phase_times = false;
   int refresh_cost = 0, rebuild_cost = 0;
   std::string one_sweep = "automatic", chunk_tail = "even", drift_sharing = "automatic";
+  long chunks_per_thread = 0;  // 0: automatic (Simulation::chunk_sharing)
+  std::string owner_keeps_last = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
   app.add_option("--threads", threads,
                  "thread counts to run (default: 1, 2, 4, ... up to the processor count)")
@@ -190,6 +192,15 @@ int main(int argc, char** argv) {
                  "(automatic: on 4 threads or more; Simulation::set_drift_sharing, the same "
                  "results)")
       ->check(CLI::IsMember({"automatic", "always", "never"}));
+  app.add_option("--chunks-per-thread", chunks_per_thread,
+                 "about this many chunks of each thread's block in the stages of a step "
+                 "(default automatic: 8 below 8 threads, 16 from 8; Simulation::set_chunk_sharing, "
+                 "the same results)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--owner-keeps-last", owner_keeps_last,
+                 "automatic | yes | no: whether a block's last untaken chunk stays with its owner "
+                 "(automatic: yes below 8 threads; the same results)")
+      ->check(CLI::IsMember({"automatic", "yes", "no"}));
   CLI11_PARSE(app, argc, argv);
   const Simulation::OneSweep sweep_choice = one_sweep == "always" ? Simulation::OneSweep::always
                                             : one_sweep == "never"
@@ -248,6 +259,13 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       Simulation sim = make_simulation(packing, gravity);
       sim.set_one_sweep(sweep_choice);
+      if (chunks_per_thread > 0 || owner_keeps_last != "automatic") {
+        // (what is not given stays as automatic chooses it for this team)
+        Simulation::ChunkSharing sharing = sim.chunk_sharing(t);
+        if (chunks_per_thread > 0) sharing.chunks_per_thread = chunks_per_thread;
+        if (owner_keeps_last != "automatic") sharing.owner_keeps_last = owner_keeps_last == "yes";
+        sim.set_chunk_sharing(sharing);
+      }
       sim.set_drift_sharing(drift_sharing == "always"  ? Simulation::DriftSharing::always
                             : drift_sharing == "never" ? Simulation::DriftSharing::never
                                                        : Simulation::DriftSharing::automatic);

@@ -5,16 +5,16 @@
 // takes the chunks of its own block from its front, in order, so that in a balanced step it works
 // on the same particles, and the same cache lines, as in the stage before and the step before.
 // Then it takes chunks of the other threads' blocks from their backs, as long as the owner has
-// at least two chunks left: a thread on a slower core (another process on it, a lower clock with
-// many cores busy) thus hands its last chunks to the others instead of making them wait at the
-// next barrier (on a 16-core server the threads had waited 14 % of the step at the barriers with
-// fixed blocks, docs/performance.md sec. 16), but a chunk changes hands only where the owner is
-// really behind. A taken-over chunk is dear: its particles' data lies in the owner's caches
-// (written by its drift, read again by its gather), and on the 2-core development VM such a
-// chunk took about 1.5 times as long. Taking the next chunks from the owner's front, as this
-// queue first did, took them whenever the owner was a fraction of a chunk behind; and for the
-// thread whose block follows, the back of a block is the part whose rows reach into its own
-// particles (docs/performance.md sec. 20).
+// at least two chunks left (on 8 threads or more, one: the plan's owner_keeps_last): a thread on a
+// slower core (another process on it, a lower clock with many cores busy) thus hands its last
+// chunks to the others instead of making them wait at the next barrier (on a 16-core server the
+// threads had waited 14 % of the step at the barriers with fixed blocks, docs/performance.md sec.
+// 16), but a chunk changes hands only where the owner is really behind. A taken-over chunk is dear:
+// its particles' data lies in the owner's caches (written by its drift, read again by its gather),
+// and on the 2-core development VM such a chunk took about 1.5 times as long. Taking the next
+// chunks from the owner's front, as this queue first did, took them whenever the owner was a
+// fraction of a chunk behind; and for the thread whose block follows, the back of a block is the
+// part whose rows reach into its own particles (docs/performance.md sec. 20).
 //
 // A block's chunks are of one length (Tail::even, the default), or they shrink towards its back
 // (Tail::shrinking, chunk_bounds): then the last chunk a thread works on, its own or one it takes
@@ -57,13 +57,19 @@ class ChunkQueue {
   // Serial, before the parallel region: `team` equal blocks of [0, n), taken `chunk` indices at
   // a time. `team` must be the size of the team that will call drain (otherwise each thread
   // falls back to its own block of [0, n), without sharing).
-  void plan(long n, int team, long chunk, Tail tail = Tail::even) {
+  // owner_keeps_last: whether a block's last untaken chunk stays with its owner (the rule
+  // measured on 2 threads, sec. 20), or may go to another thread too (a benchmark's choice,
+  // Simulation::set_chunk_sharing).
+  void plan(long n, int team, long chunk, Tail tail = Tail::even, bool owner_keeps_last = true) {
     plan_blocks(n, team, chunk, tail, [&](int t) { return block_of(n, team, t); });
+    left_to_owner_ = owner_keeps_last ? chunks_left_to_owner : 0;
   }
   // The same with the blocks of a partition (core/thread_partition.hpp).
-  void plan(const ThreadPartition& partition, long chunk, Tail tail = Tail::even) {
+  void plan(const ThreadPartition& partition, long chunk, Tail tail = Tail::even,
+            bool owner_keeps_last = true) {
     plan_blocks(partition.size(), partition.team(), chunk, tail,
                 [&](int t) { return partition.block(t); });
+    left_to_owner_ = owner_keeps_last ? chunks_left_to_owner : 0;
   }
 
   // The same with ranges of [0, n) of any length, one per thread of `team`, in order (the tails
@@ -132,14 +138,15 @@ class ChunkQueue {
     own_work.seconds = omp_get_wtime() - start;
     for (int t = 1; t < team; ++t) {  // the others', from the back, while their owners lag
       Cursor& other = cursors_[(me + t) % team];
-      for (long k = 0; take(other, chunks_left_to_owner, k, false);) run(other, k, chunk);
+      for (long k = 0; take(other, left_to_owner_, k, false);) run(other, k, chunk);
     }
     return own_work;
   }
 
  private:
   // Chunks of a block go to other threads only while more than this many are untaken: the
-  // owner's last chunk stays its own (measured: docs/performance.md sec. 20).
+  // owner's last chunk stays its own (measured on 2 threads: docs/performance.md sec. 20), unless
+  // the plan says otherwise (owner_keeps_last, false on 8 threads or more: sec. 34).
   static constexpr long chunks_left_to_owner = 1;
   static constexpr long smallest_chunk = 32;
 
@@ -178,7 +185,7 @@ class ChunkQueue {
       cursors_ = std::make_unique<Cursor[]>(team);
       capacity_ = team;
     }
-    n_ = n, team_ = team, ranges_ = false;
+    n_ = n, team_ = team, ranges_ = false, left_to_owner_ = chunks_left_to_owner;
     long length = std::max(1L, chunk);
     // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 100
     // chunks is taken in longer chunks)
@@ -197,15 +204,17 @@ class ChunkQueue {
   std::unique_ptr<Cursor[]> cursors_;
   int capacity_ = 0, team_ = 0;
   long n_ = 0;
-  bool ranges_ = false;  // planned by plan_ranges
+  bool ranges_ = false;                        // planned by plan_ranges
+  long left_to_owner_ = chunks_left_to_owner;  // (plan's owner_keeps_last)
 };
 
-// The chunk size for n indices on a team: about 8 chunks per thread, so that the last ones can
-// even out a slower core, and between 64 and 1,024 particles (a chunk's rows end with one
-// partly filled batch of the vectorised kernel, and each chunk costs one atomic increment).
-inline long stage_chunk(long n, int team) {
+// The chunk size for n indices on a team: about `chunks_per_thread` chunks per thread (8, or 16
+// on 8 threads or more: Simulation::chunk_sharing), so that the last ones can even out a slower
+// core, and between 64 and 1,024 particles (a chunk's rows end with one partly filled batch of
+// the vectorised kernel, and each chunk costs one atomic increment).
+inline long stage_chunk(long n, int team, long chunks_per_thread = 8) {
   if (team <= 1) return std::max(1L, n);
-  return std::clamp(n / (8L * team), 64L, 1024L);
+  return std::clamp(n / (chunks_per_thread * team), 64L, 1024L);
 }
 
 }  // namespace grainlab

@@ -148,7 +148,9 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   // chunks. A particle's drift is the same whichever thread makes it.
   const bool shared = shares_drift(team);
   if (shared) {
-    drift_chunks_.plan(partition_, stage_chunk(n, team), chunk_tail_);
+    const ChunkSharing sharing = chunk_sharing(team);
+    drift_chunks_.plan(partition_, stage_chunk(n, team, sharing.chunks_per_thread), chunk_tail_,
+                       sharing.owner_keeps_last);
     ++shared_drift_steps_;
   }
   StepPhaseTimes& timer = phase_times_;
@@ -253,12 +255,13 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   prepare_wall_lanes();
   const bool parallel = n > parallel_threshold;
   const int team = step_team(n);
-  const long chunk = stage_chunk(n, team);
+  const ChunkSharing sharing = chunk_sharing(team);
+  const long chunk = stage_chunk(n, team, sharing.chunks_per_thread);
   const bool records = uses_pair_kernel() && !records_written;
   partition_.plan(n, team);  // (the drift's blocks, unless this is a fresh state)
-  if (records) record_chunks_.plan(partition_, chunk, chunk_tail_);
-  contact_chunks_.plan(partition_, chunk, chunk_tail_);
-  particle_chunks_.plan(partition_, chunk, chunk_tail_);
+  if (records) record_chunks_.plan(partition_, chunk, chunk_tail_, sharing.owner_keeps_last);
+  contact_chunks_.plan(partition_, chunk, chunk_tail_, sharing.owner_keeps_last);
+  particle_chunks_.plan(partition_, chunk, chunk_tail_, sharing.owner_keeps_last);
   double max_fraction = 0.0, max_speed2 = 0.0, next_speed2 = 0.0;
   long handed_back = 0, walls_handed_back = 0;
   // (for one_sweep_possible and the kernel's test for contacts begun in the next step)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -149,6 +150,25 @@ class Simulation {
   enum class DriftSharing { automatic, always, never };
   void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
   static constexpr int shared_drift_team = 4;
+  // How the stages in a step's regions share their chunks (core/chunk_queue.hpp): about
+  // `chunks_per_thread` chunks of each block (at most 1,024 particles each), and whether a block's
+  // last untaken chunk stays with its owner. Automatic (the default): 8 chunks and the owner keeps
+  // its last on teams of fewer than many_threads threads, 16 chunks and it need not on larger
+  // ones (docs/performance.md sec. 34). The results are the same. Not saved with the state.
+  struct ChunkSharing {
+    long chunks_per_thread = 8;
+    bool owner_keeps_last = true;
+  };
+  static constexpr int many_threads = 8;
+  void set_chunk_sharing(std::optional<ChunkSharing> choice) {  // nullopt: automatic
+    chunk_sharing_ = choice;
+    if (chunk_sharing_)
+      chunk_sharing_->chunks_per_thread = std::max(1L, chunk_sharing_->chunks_per_thread);
+  }
+  ChunkSharing chunk_sharing(int team) const {
+    if (chunk_sharing_) return *chunk_sharing_;
+    return team >= many_threads ? ChunkSharing{16, false} : ChunkSharing{8, true};
+  }
   long shared_drift_steps() const { return shared_drift_steps_; }  // drifts through the queue
   // Per-thread times of the step's stages and waits, from now on (zeroed) or no more
   // (core/step_phase_times.hpp; the same results either way).
@@ -280,6 +300,7 @@ class Simulation {
   // The drift's chunks, where it shares them (set_drift_sharing).
   ChunkQueue drift_chunks_;
   DriftSharing drift_sharing_ = DriftSharing::automatic;
+  std::optional<ChunkSharing> chunk_sharing_;  // (set_chunk_sharing; nullopt: automatic)
   long shared_drift_steps_ = 0;
   bool shares_drift(int team) const {
     return team > 1 && (drift_sharing_ == DriftSharing::always ||

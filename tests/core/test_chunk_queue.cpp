@@ -26,10 +26,10 @@ struct Coverage {
 // Drains a queue planned for `planned` threads on a team of `team`; `late` (>= 0) is a thread
 // that starts `delay` after the others.
 Coverage drain(long n, int planned, int team, long chunk, int late = -1,
-               std::chrono::milliseconds delay = {},
-               ChunkQueue::Tail tail = ChunkQueue::Tail::even) {
+               std::chrono::milliseconds delay = {}, ChunkQueue::Tail tail = ChunkQueue::Tail::even,
+               bool owner_keeps_last = true) {
   ChunkQueue q;
-  q.plan(n, planned, chunk, tail);
+  q.plan(n, planned, chunk, tail, owner_keeps_last);
   Coverage c;
   c.times_taken.assign(n, 0);
   c.taken_by.assign(n, -1);
@@ -64,15 +64,17 @@ TEST(ChunkQueue, EveryIndexIsTakenExactlyOnce) {
   for (long n : {0L, 1L, 7L, 1000L, 12345L})
     for (int team : {1, 2, 3, 4, 8})
       for (long chunk : {1L, 64L, stage_chunk(n, team)})
-        for (ChunkQueue::Tail tail : {ChunkQueue::Tail::even, ChunkQueue::Tail::shrinking}) {
-          SCOPED_TRACE(testing::Message()
-                       << "n " << n << " team " << team << " chunk " << chunk << " shrinking "
-                       << (tail == ChunkQueue::Tail::shrinking));
-          const Coverage c = drain(n, team, team, chunk, -1, {}, tail);
-          for (long i = 0; i < n; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
-          EXPECT_FALSE(c.chunk_crossed_a_block);
-          EXPECT_FALSE(c.chunk_too_long);
-        }
+        for (ChunkQueue::Tail tail : {ChunkQueue::Tail::even, ChunkQueue::Tail::shrinking})
+          for (bool owner_keeps_last : {true, false}) {
+            SCOPED_TRACE(testing::Message()
+                         << "n " << n << " team " << team << " chunk " << chunk << " shrinking "
+                         << (tail == ChunkQueue::Tail::shrinking) << " owner keeps its last "
+                         << owner_keeps_last);
+            const Coverage c = drain(n, team, team, chunk, -1, {}, tail, owner_keeps_last);
+            for (long i = 0; i < n; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
+            EXPECT_FALSE(c.chunk_crossed_a_block);
+            EXPECT_FALSE(c.chunk_too_long);
+          }
 }
 
 TEST(ChunkQueue, ChunksShrinkTowardsTheBackOfABlock) {
@@ -145,6 +147,15 @@ TEST(ChunkQueue, AThreadTakesAnotherBlockOnlyWhileItsOwnerHasTwoChunksLeft) {
   for (long i = 96; i < 128; ++i) ASSERT_EQ(shrunk.taken_by[i], 0) << "index " << i;
 }
 
+TEST(ChunkQueue, WhereTheOwnerNeedNotKeepItsLastChunkALateOwnerFindsItsBlockDone) {
+  // Thread 1 starts 100 ms late: thread 0 takes all four of its chunks, the last one too.
+  const Coverage c =
+      drain(512, 2, 2, 64, 1, std::chrono::milliseconds(100), ChunkQueue::Tail::even, false);
+  for (long i = 0; i < 512; ++i) ASSERT_EQ(c.times_taken[i], 1) << "index " << i;
+  for (long i = 0; i < 512; ++i) ASSERT_EQ(c.taken_by[i], 0) << "index " << i;
+  EXPECT_EQ(c.chunks_of_thread[1], 0);
+}
+
 TEST(ChunkQueue, ATeamOtherThanPlannedStillCoversEveryIndexOnce) {
   for (int team : {1, 2, 3}) {
     const Coverage c = drain(1000, 4, team, 64);
@@ -154,10 +165,11 @@ TEST(ChunkQueue, ATeamOtherThanPlannedStillCoversEveryIndexOnce) {
 }
 
 TEST(ChunkQueue, ChunkSizeGivesEachThreadSeveralChunks) {
-  EXPECT_EQ(stage_chunk(11636, 1), 11636);    // one thread: its block in one piece
-  EXPECT_EQ(stage_chunk(11636, 2), 727);      // 8 per thread
-  EXPECT_EQ(stage_chunk(1000, 16), 64);       // never below 64
-  EXPECT_EQ(stage_chunk(1000000, 16), 1024);  // never above 1,024
+  EXPECT_EQ(stage_chunk(11636, 1), 11636);      // one thread: its block in one piece
+  EXPECT_EQ(stage_chunk(11636, 2), 727);        // 8 per thread
+  EXPECT_EQ(stage_chunk(1000, 16), 64);         // never below 64
+  EXPECT_EQ(stage_chunk(1000000, 16), 1024);    // never above 1,024
+  EXPECT_EQ(stage_chunk(139632, 16, 16), 545);  // 16 per thread where asked
 }
 
 // Ranges of any length, one per thread (the tails of a swept step's blocks): every index of the

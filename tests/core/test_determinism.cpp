@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <cstring>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -91,29 +92,54 @@ TEST(Determinism, ATeamThatChangesBetweenStepsGivesTheBitsOfOneThread) {
 }
 
 // The drift's particles through a chunk queue (Simulation::set_drift_sharing; automatic on 4
-// threads or more): on 2 and 3 threads, whose drift may hand chunks to one another, the run ends
-// in the bits of one thread that drifts its particles in order; with rolling resistance (the
-// scalar law) and without (the vectorised kernel, whose velocity records the drift writes).
-// Reference: the same run on one thread, drift not shared.
-TEST(Determinism, ASharedDriftGivesTheBitsOfOneThread) {
+// threads or more), and the chunks of every stage shared as on many threads (16 per thread, the
+// owner's last one given up too; Simulation::set_chunk_sharing, automatic on 8 threads or more):
+// on 2 and 3 threads, whose stages may hand chunks to one another, the run ends in the bits of one
+// thread that drifts its particles in order; with rolling resistance (the scalar law) and without
+// (the vectorised kernel, whose velocity records the drift writes). Reference: the same run on
+// one thread, drift not shared.
+TEST(Determinism, SharedChunksGiveTheBitsOfOneThread) {
   for (double arf : {0.05, 0.0}) {
     SCOPED_TRACE(testing::Message() << "rolling resistance " << arf);
-    const auto run = [&](int threads, Simulation::DriftSharing sharing) {
+    const auto run = [&](int threads, Simulation::DriftSharing sharing,
+                         std::optional<Simulation::ChunkSharing> chunks) {
       omp_set_num_threads(threads);
       Simulation sim = random_box(1000, 13, true, arf);
       sim.set_drift_sharing(sharing);
+      sim.set_chunk_sharing(chunks);
       for (int s = 0; s < 6000; ++s) sim.step();
       EXPECT_GT(sim.rebuild_count(), 1);
       EXPECT_EQ(sim.shared_drift_steps(), sharing == Simulation::DriftSharing::always ? 6000 : 0);
       return sim.particles();
     };
-    const ParticleStore one = run(1, Simulation::DriftSharing::never);
+    const ParticleStore one = run(1, Simulation::DriftSharing::never, std::nullopt);
     for (int threads : {2, 3}) {
       SCOPED_TRACE(testing::Message() << threads << " threads");
-      expect_same_bits(one, run(threads, Simulation::DriftSharing::always));
+      expect_same_bits(one, run(threads, Simulation::DriftSharing::always, std::nullopt));
+      expect_same_bits(
+          one, run(threads, Simulation::DriftSharing::always, Simulation::ChunkSharing{16, false}));
     }
   }
   omp_set_num_threads(omp_get_num_procs());
+}
+
+// The automatic chunk sharing: as measured on 2 threads below 8 threads, finer chunks that the
+// owner need not keep from 8 (docs/performance.md sec. 34).
+TEST(ChunkSharing, FollowsTheTeam) {
+  Simulation sim = random_box(600, 3, true);
+  for (int team : {1, 2, 7}) {
+    EXPECT_EQ(sim.chunk_sharing(team).chunks_per_thread, 8) << team;
+    EXPECT_TRUE(sim.chunk_sharing(team).owner_keeps_last) << team;
+  }
+  for (int team : {8, 16, 64}) {
+    EXPECT_EQ(sim.chunk_sharing(team).chunks_per_thread, 16) << team;
+    EXPECT_FALSE(sim.chunk_sharing(team).owner_keeps_last) << team;
+  }
+  sim.set_chunk_sharing(Simulation::ChunkSharing{4, true});
+  EXPECT_EQ(sim.chunk_sharing(16).chunks_per_thread, 4);
+  EXPECT_TRUE(sim.chunk_sharing(16).owner_keeps_last);
+  sim.set_chunk_sharing(std::nullopt);
+  EXPECT_EQ(sim.chunk_sharing(16).chunks_per_thread, 16);
 }
 
 TEST(Determinism, RestoredStateContinuesBitIdentically) {
