@@ -1,6 +1,7 @@
 // Work sharing for the stages of a step that run inside one parallel region
-// (Simulation::compute_forces). [0, n) is cut into the team's blocks (the partition
-// schedule(static) makes, core/thread_block.hpp, or the one the threads' speeds make,
+// (Simulation::compute_forces; the drift's region on 4 threads or more, Simulation::kick_and_drift;
+// the tails of a swept step, core/one_sweep.cpp). [0, n) is cut into the team's blocks (the
+// partition schedule(static) makes, core/thread_block.hpp, or the one the threads' speeds make,
 // core/thread_partition.hpp) and each block into chunks. Every thread first
 // takes the chunks of its own block from its front, in order, so that in a balanced step it works
 // on the same particles, and the same cache lines, as in the stage before and the step before.
@@ -58,18 +59,17 @@ class ChunkQueue {
   // a time. `team` must be the size of the team that will call drain (otherwise each thread
   // falls back to its own block of [0, n), without sharing).
   // owner_keeps_last: whether a block's last untaken chunk stays with its owner (the rule
-  // measured on 2 threads, sec. 20), or may go to another thread too (a benchmark's choice,
-  // Simulation::set_chunk_sharing).
+  // measured on 2 threads, sec. 20), or may go to another thread too (Simulation::chunk_sharing:
+  // on 8 threads or more, sec. 34).
   void plan(long n, int team, long chunk, Tail tail = Tail::even, bool owner_keeps_last = true) {
-    plan_blocks(n, team, chunk, tail, [&](int t) { return block_of(n, team, t); });
-    left_to_owner_ = owner_keeps_last ? chunks_left_to_owner : 0;
+    plan_blocks(n, team, chunk, tail, owner_keeps_last,
+                [&](int t) { return block_of(n, team, t); });
   }
   // The same with the blocks of a partition (core/thread_partition.hpp).
   void plan(const ThreadPartition& partition, long chunk, Tail tail = Tail::even,
             bool owner_keeps_last = true) {
-    plan_blocks(partition.size(), partition.team(), chunk, tail,
+    plan_blocks(partition.size(), partition.team(), chunk, tail, owner_keeps_last,
                 [&](int t) { return partition.block(t); });
-    left_to_owner_ = owner_keeps_last ? chunks_left_to_owner : 0;
   }
 
   // The same with ranges of [0, n) of any length, one per thread of `team`, in order (the tails
@@ -77,7 +77,7 @@ class ChunkQueue {
   // the planned one, its first thread takes every range whole.
   template <class RangeOf>
   void plan_ranges(long n, int team, long chunk, Tail tail, RangeOf&& range_of) {
-    plan_blocks(n, team, chunk, tail, range_of);
+    plan_blocks(n, team, chunk, tail, true, range_of);
     ranges_ = true;
   }
 
@@ -180,12 +180,14 @@ class ChunkQueue {
     return end - first;
   }
   template <class BlockOf>
-  void plan_blocks(long n, int team, long chunk, Tail tail, BlockOf&& block) {
+  void plan_blocks(long n, int team, long chunk, Tail tail, bool owner_keeps_last,
+                   BlockOf&& block) {
     if (team > capacity_) {
       cursors_ = std::make_unique<Cursor[]>(team);
       capacity_ = team;
     }
-    n_ = n, team_ = team, ranges_ = false, left_to_owner_ = chunks_left_to_owner;
+    n_ = n, team_ = team, ranges_ = false;
+    left_to_owner_ = owner_keeps_last ? chunks_left_to_owner : 0;
     long length = std::max(1L, chunk);
     // (chunk numbers are 32-bit halves of one atomic word: a block of more than 2^32 - 100
     // chunks is taken in longer chunks)
@@ -205,7 +207,7 @@ class ChunkQueue {
   int capacity_ = 0, team_ = 0;
   long n_ = 0;
   bool ranges_ = false;                        // planned by plan_ranges
-  long left_to_owner_ = chunks_left_to_owner;  // (plan's owner_keeps_last)
+  long left_to_owner_ = chunks_left_to_owner;  // (the plan's owner_keeps_last)
 };
 
 // The chunk size for n indices on a team: about `chunks_per_thread` chunks per thread (8, or 16

@@ -145,7 +145,9 @@ class Simulation {
   void set_chunk_tail(ChunkQueue::Tail tail) { chunk_tail_ = tail; }
   // Whether the drift's particles go through a chunk queue (core/chunk_queue.hpp: a thread that
   // is done takes the last chunks of one that lags) or each thread drifts its own block whole:
-  // automatic shares them on teams of shared_drift_team threads or more, always, or never. The
+  // automatic shares them on teams of shared_drift_team threads or more, always, or never. On 16
+  // threads it halves the wait at the drift's end; the step moved by 0.98-1.03 (docs/performance.md
+  // sec. 34): it is there for a thread held up in the drift, which no one else could relieve. The
   // results are the same. Not saved with the state.
   enum class DriftSharing { automatic, always, never };
   void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
@@ -153,23 +155,28 @@ class Simulation {
   // How the stages in a step's regions share their chunks (core/chunk_queue.hpp): about
   // `chunks_per_thread` chunks of each block (at most 1,024 particles each), and whether a block's
   // last untaken chunk stays with its owner. Automatic (the default): 8 chunks and the owner keeps
-  // its last on teams of fewer than many_threads threads, 16 chunks and it need not on larger
-  // ones (docs/performance.md sec. 34). The results are the same. Not saved with the state.
+  // its last on teams of fewer than fine_chunk_team threads, 16 chunks and it need not on larger
+  // ones (docs/performance.md sec. 34). The tails of a swept step (core/one_sweep.cpp, automatic
+  // on 2 threads only) keep 8 chunks and the owner's last. The results are the same. Not saved
+  // with the state.
   struct ChunkSharing {
     long chunks_per_thread = 8;
     bool owner_keeps_last = true;
   };
-  static constexpr int many_threads = 8;
+  static constexpr int fine_chunk_team = 8;
   void set_chunk_sharing(std::optional<ChunkSharing> choice) {  // nullopt: automatic
     chunk_sharing_ = choice;
     if (chunk_sharing_)
-      chunk_sharing_->chunks_per_thread = std::max(1L, chunk_sharing_->chunks_per_thread);
+      chunk_sharing_->chunks_per_thread =
+          std::clamp(chunk_sharing_->chunks_per_thread, 1L, 1L << 20);
   }
   ChunkSharing chunk_sharing(int team) const {
     if (chunk_sharing_) return *chunk_sharing_;
-    return team >= many_threads ? ChunkSharing{16, false} : ChunkSharing{8, true};
+    return team >= fine_chunk_team ? ChunkSharing{16, false} : ChunkSharing{8, true};
   }
-  long shared_drift_steps() const { return shared_drift_steps_; }  // drifts through the queue
+  // Steps whose drift was planned through the queue (a region whose team is not the planned one
+  // falls back to blocks: core/chunk_queue.hpp).
+  long shared_drift_steps() const { return shared_drift_steps_; }
   // Per-thread times of the step's stages and waits, from now on (zeroed) or no more
   // (core/step_phase_times.hpp; the same results either way).
   void time_step_phases(bool on) {

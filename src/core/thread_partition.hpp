@@ -1,13 +1,14 @@
 // The blocks of [0, n) that the threads of a step start from, sized by how fast each thread has
-// been going. Every stage of a step starts each thread on the same block (the drift in full, the
-// force stages from its front, core/chunk_queue.hpp), so that a particle's data stays in one
-// core's caches from stage to stage and from step to step. With equal blocks, a thread on a
-// slower core (another process or another virtual machine on it, a lower clock) makes the others
-// wait at every barrier: the drift has no chunks to hand over, and in the force stages the owner
-// keeps its last chunk. On the 2-core development VM, whose two CPUs drift apart by up to 1.9x for
-// minutes at a time, the first thread to finish waited 80 to 120 microseconds per step at the
-// force stage's barrier alone (docs/performance.md sec. 24). So each thread times the work it does
-// on its own block, and the blocks follow the threads' speeds, smoothed over steps.
+// been going. Every stage of a step starts each thread on the same block (the drift in full on 2
+// and 3 threads, every other stage from its front, core/chunk_queue.hpp), so that a particle's data
+// stays in one core's caches from stage to stage and from step to step. With equal blocks, a thread
+// on a slower core (another process or another virtual machine on it, a lower clock) makes the
+// others wait at every barrier: on 2 threads the drift has no chunks to hand over, and in the
+// force stages the owner keeps its last chunk (docs/performance.md sec. 34 for 4 and more). On the
+// 2-core development VM, whose two CPUs drift apart by up to 1.9x for minutes at a time, the first
+// thread to finish waited 80 to 120 microseconds per step at the force stage's barrier alone
+// (docs/performance.md sec. 24). So each thread times the work it does on its own block, and the
+// blocks follow the threads' speeds, smoothed over steps.
 //
 // Which thread computes a particle never changes its arithmetic, so the results stay
 // bit-identical whatever the blocks.

@@ -1,7 +1,8 @@
 // The work sharing of the step's stages (core/chunk_queue.hpp): every index of [0, n) is handed
 // out exactly once, in chunks that never cross a thread's block and shrink towards its back; a
 // thread that is late finds its block done by the others, from its back, all but the one chunk
-// left to it; a team other than the planned one still covers [0, n) once.
+// left to it (or all of it, where the plan lets the owner's last chunk go too); a team other than
+// the planned one still covers [0, n) once.
 #include <gtest/gtest.h>
 #include <omp.h>
 

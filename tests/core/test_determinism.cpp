@@ -92,32 +92,49 @@ TEST(Determinism, ATeamThatChangesBetweenStepsGivesTheBitsOfOneThread) {
 }
 
 // The drift's particles through a chunk queue (Simulation::set_drift_sharing; automatic on 4
-// threads or more), and the chunks of every stage shared as on many threads (16 per thread, the
-// owner's last one given up too; Simulation::set_chunk_sharing, automatic on 8 threads or more):
-// on 2 and 3 threads, whose stages may hand chunks to one another, the run ends in the bits of one
-// thread that drifts its particles in order; with rolling resistance (the scalar law) and without
-// (the vectorised kernel, whose velocity records the drift writes). Reference: the same run on
-// one thread, drift not shared.
+// threads or more), and the chunks of every stage shared as on many threads, the owner's last one
+// given up too (Simulation::set_chunk_sharing; automatic on 8 threads or more): on 2 and 3
+// threads, whose stages hand chunks to one another, the run ends in the bits of one thread that
+// drifts its particles in order; with rolling resistance (the scalar law) and without (the
+// vectorised kernel, whose velocity records the drift writes). At 1,000 beads a chunk is 64 beads
+// whatever the chunks per thread; 2 per thread makes them longer. And the automatic choices on 4
+// and 8 threads (more threads than this machine may have: their turns still interleave), over a
+// shorter run. Reference: the same run on one thread, drift not shared. Every step in stages (the
+// sweep, core/one_sweep.cpp, may be automatic on 2 threads and has its own queues).
 TEST(Determinism, SharedChunksGiveTheBitsOfOneThread) {
   for (double arf : {0.05, 0.0}) {
     SCOPED_TRACE(testing::Message() << "rolling resistance " << arf);
-    const auto run = [&](int threads, Simulation::DriftSharing sharing,
+    const auto run = [&](int threads, int steps, Simulation::DriftSharing sharing,
                          std::optional<Simulation::ChunkSharing> chunks) {
       omp_set_num_threads(threads);
       Simulation sim = random_box(1000, 13, true, arf);
+      sim.set_one_sweep(Simulation::OneSweep::never);
       sim.set_drift_sharing(sharing);
       sim.set_chunk_sharing(chunks);
-      for (int s = 0; s < 6000; ++s) sim.step();
-      EXPECT_GT(sim.rebuild_count(), 1);
-      EXPECT_EQ(sim.shared_drift_steps(), sharing == Simulation::DriftSharing::always ? 6000 : 0);
+      for (int s = 0; s < steps; ++s) sim.step();
+      if (steps > 1000) {
+        EXPECT_GT(sim.rebuild_count(), 1);
+      }
+      const bool shared = sharing == Simulation::DriftSharing::always ||
+                          (sharing == Simulation::DriftSharing::automatic &&
+                           threads >= Simulation::shared_drift_team);
+      EXPECT_EQ(sim.shared_drift_steps(), shared ? steps : 0);
       return sim.particles();
     };
-    const ParticleStore one = run(1, Simulation::DriftSharing::never, std::nullopt);
+    using Sharing = Simulation::ChunkSharing;
+    constexpr auto always = Simulation::DriftSharing::always;
+    const ParticleStore one = run(1, 6000, Simulation::DriftSharing::never, std::nullopt);
     for (int threads : {2, 3}) {
       SCOPED_TRACE(testing::Message() << threads << " threads");
-      expect_same_bits(one, run(threads, Simulation::DriftSharing::always, std::nullopt));
-      expect_same_bits(
-          one, run(threads, Simulation::DriftSharing::always, Simulation::ChunkSharing{16, false}));
+      expect_same_bits(one, run(threads, 6000, always, std::nullopt));
+      expect_same_bits(one, run(threads, 6000, always, Sharing{16, false}));
+      expect_same_bits(one, run(threads, 6000, always, Sharing{2, false}));
+    }
+    const ParticleStore short_one = run(1, 300, Simulation::DriftSharing::never, std::nullopt);
+    for (int threads : {4, 8}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, automatic");
+      expect_same_bits(short_one,
+                       run(threads, 300, Simulation::DriftSharing::automatic, std::nullopt));
     }
   }
   omp_set_num_threads(omp_get_num_procs());

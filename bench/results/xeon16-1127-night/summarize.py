@@ -4,8 +4,8 @@ chunk-sharing-ab.txt, chunk-sharing-defaults-ab.txt): per workload, thread count
 flags --drift-sharing, --chunk-tail, --chunks-per-thread, --owner-keeps-last, "-" where not
 given) the ns per particle-step of each round, the median, the state hashes, the stage means (µs
 per step, mean over the threads, where timed), and each variant's per-round ratio against the
-first variant of its workload, thread count and steps that sets the same flags (old time / new
-time, > 1: faster).
+first variant of its workload, thread count and steps that ran interleaved with it (the one
+that sets the same flags, where there is one; old time / new time, > 1: faster).
   python3 summarize.py FILE"""
 import collections, re, statistics as st, sys
 
@@ -32,8 +32,10 @@ for block in text.split("## ")[1:]:
            flag("--chunk-tail"), flag("--chunks-per-thread"), flag("--owner-keeps-last"))
     runs.append((key, float(m.group(2)), m.group(3), stages))
 groups = collections.defaultdict(list)
-for key, ns, h, stages in runs:
+where = collections.defaultdict(list)  # the runs' places in the file
+for place, (key, ns, h, stages) in enumerate(runs):
     groups[key].append((ns, h, stages))
+    where[key].append(place)
 names = ["drift", "drift wait", "contacts", "contacts wait", "gather", "gather wait", "step (sum)"]
 for key, v in groups.items():
     ns = [r[0] for r in v]
@@ -43,9 +45,13 @@ for key, v in groups.items():
     print(line)
     if v[0][2]:
         print("      stages: " + "  ".join(f"{n} {st.mean(r[2].get(n, 0.0) for r in v):.0f}" for n in names))
-    # (the first variant of the same workload, thread count and steps that sets the same flags)
+    # (the first variant of the same workload, thread count and steps whose runs lie among this
+    # one's, preferably one that sets the same flags)
     given = lambda k: tuple(x != "-" for x in k[3:])
-    base = next(v2 for k2, v2 in groups.items() if k2[:3] == key[:3] and given(k2) == given(key))
+    among = [k2 for k2 in groups if k2[:3] == key[:3] and min(where[k2]) < min(where[key]) and
+             min(where[key]) < max(where[k2])]
+    same = [k2 for k2 in among if given(k2) == given(key)]
+    base = groups[(same or among)[0]] if among else v
     if base is not v:
         ratios = [b[0] / x[0] for b, x in zip(base, v)]
         print("      per-round ratio against the first variant: " + " ".join(f"{r:.3f}" for r in ratios) +
