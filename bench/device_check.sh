@@ -4,8 +4,8 @@
 # force stages' shrinking chunk tails pay, and the list updates at every thread count.
 #   1. 139,632 beads (dense-11k in 2x2x3 tiles), 1 thread, then the largest thread count with
 #      --phase-times, chunk tails even and shrinking in turn, the largest thread count with the
-#      chunks of fewer than 8 threads (sec. 34), and with every possible step as one sweep (its
-#      blocks' tails shared), ROUNDS rounds (default 2);
+#      chunks of fewer than 8 threads (sec. 34), with the drift's blocks whole, and with every
+#      possible step as one sweep (its blocks' tails shared), ROUNDS rounds (default 2);
 #   2. the list's refresh and rebuild at 1, 2, 4 ... threads (--refresh-cost 20 --rebuild-cost 5);
 #   3. with GRAINLAB and PS_CONFIG set: that plane strain config (e.g. the reference test cut to
 #      max_axial_strain = 0.005) on the largest thread count, its curve's md5 and the stages' times
@@ -41,6 +41,10 @@ run() { "$bench" dense-11k --tile 2x2x3 --cache-dir "$cache" --reps 1 --no-csv "
       echo "-- round $r, $procs threads, chunk tail $tail, 8 chunks a block kept, 600 steps"
       run --threads "$procs" --steps 600 --warmup 20 --phase-times --chunk-tail "$tail" \
         --chunks-per-thread 8 --owner-keeps-last yes
+      # the drift's blocks whole (the drift shares its chunks from 4 threads; sec. 34)
+      echo "-- round $r, $procs threads, chunk tail $tail, drift not shared, 600 steps"
+      run --threads "$procs" --steps 600 --warmup 20 --phase-times --chunk-tail "$tail" \
+        --drift-sharing never
       # every possible step as one sweep, with its shared tails (automatic keeps it to 2 threads)
       echo "-- round $r, $procs threads, one sweep always, chunk tail $tail, 600 steps"
       run --threads "$procs" --steps 600 --warmup 20 --phase-times --chunk-tail "$tail" \
