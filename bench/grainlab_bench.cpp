@@ -202,10 +202,12 @@ int main(int argc, char** argv) {
                  "(automatic: yes below 8 threads; the same results)")
       ->check(CLI::IsMember({"automatic", "yes", "no"}));
   CLI11_PARSE(app, argc, argv);
-  const Simulation::OneSweep sweep_choice = one_sweep == "always" ? Simulation::OneSweep::always
-                                            : one_sweep == "never"
-                                                ? Simulation::OneSweep::never
-                                                : Simulation::OneSweep::automatic;
+  // (--one-sweep and --drift-sharing: automatic | always | never, the choices' enumerators)
+  const auto choice = []<class Choice>(const std::string& word, Choice) {
+    return word == "always" ? Choice::always : word == "never" ? Choice::never : Choice::automatic;
+  };
+  const Simulation::OneSweep sweep_choice = choice(one_sweep, Simulation::OneSweep{});
+  const Simulation::DriftSharing drift_choice = choice(drift_sharing, Simulation::DriftSharing{});
 
   Packing packing;
   try {
@@ -266,9 +268,7 @@ int main(int argc, char** argv) {
         if (owner_keeps_last != "automatic") sharing.owner_keeps_last = owner_keeps_last == "yes";
         sim.set_chunk_sharing(sharing);
       }
-      sim.set_drift_sharing(drift_sharing == "always"  ? Simulation::DriftSharing::always
-                            : drift_sharing == "never" ? Simulation::DriftSharing::never
-                                                       : Simulation::DriftSharing::automatic);
+      sim.set_drift_sharing(drift_choice);
       sim.set_chunk_tail(chunk_tail == "shrinking" ? grainlab::ChunkQueue::Tail::shrinking
                                                    : grainlab::ChunkQueue::Tail::even);
       sim.advance(warmup);

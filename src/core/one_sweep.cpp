@@ -116,7 +116,6 @@ void Simulation::sweep_step() {
   const long n = static_cast<long>(particles_.size());
   const long ahead = partner_reach_.farthest;
   const ParticlePassInput pass = particle_pass_input(true, false);
-  constexpr long drift_tile = 256;   // particles per call to the records (as kick_and_drift)
   constexpr long force_tile = 1024;  // particles per call to the rows, walls and gather
   prepare_pair_forces();
   prepare_wall_lanes();
@@ -157,12 +156,9 @@ void Simulation::sweep_step() {
     long drifted = block.first;
     DriftTally tally;
     const auto drift_to = [&](long target) {
-      while (drifted < target) {
-        const long end = std::min(target, drifted + drift_tile);
-        particle_passes_.kick_and_drift(pass, drifted, end, true, tally);
-        write_particle_records(dt, {drifted, end});
-        drifted = end;
-      }
+      if (drifted >= target) return;
+      drift_particles(pass, {drifted, target}, true, true, tally);
+      drifted = target;
     };
     // 1. the head, which the rows of the blocks before this one may reach, and the tails, whose
     // rows any thread may compute from stage 2 on (shared: core/chunk_queue.hpp)
@@ -171,11 +167,7 @@ void Simulation::sweep_step() {
     ChunkQueue::OwnWork own_drift, own_rows, own_sums;
     if (tails)
       own_drift = record_chunks_.drain([&](long first, long end) {
-        for (long f = first; f < end; f += drift_tile) {
-          const long e = std::min(end, f + drift_tile);
-          particle_passes_.kick_and_drift(pass, f, e, true, tally);
-          write_particle_records(dt, {f, e});
-        }
+        drift_particles(pass, {first, end}, true, true, tally);
       });
     timer.barrier_after(StepPhaseTimes::sweep_head, since);
     // 2. the sweep: the drift `ahead` particles in front of the rows, each particle's sums and

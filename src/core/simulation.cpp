@@ -126,7 +126,6 @@ void Simulation::drift_walls() {
 // forces held), tile by tile while the tile's velocities and forces are still in the caches, and
 // sets records_written; the force region then skips its own records stage.
 Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
-  const double dt = settings_.time_step;
   const long n = static_cast<long>(particles_.size());
   // (the list's positions are only looked at when it was built for this many particles)
   const bool check_particles = neighbors_.built_for(particles_.size());
@@ -134,7 +133,6 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   // a refresh step makes it in full in step())
   const bool check_rebuild = check_particles && neighbors_.rebuild_possible_before_refresh();
   records_written = uses_pair_kernel();
-  constexpr long tile = 256;  // particles: 25 kB of velocities, forces and records
   const ParticlePassInput pass = particle_pass_input(check_particles, check_rebuild);
   // (the bound of one_sweep_possible, where the next step may run as one sweep)
   const bool bound = check_particles && one_sweep_wanted_;
@@ -166,12 +164,8 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
     // (the clock only where it is read: the timers, or the block's time for the partition)
     const double start = timed ? timer.thread_begins() : shared ? 0.0 : omp_get_wtime();
     DriftTally tally;
-    const auto drift = [&](long first_particle, long end_particle) {
-      for (long first = first_particle; first < end_particle; first += tile) {
-        const long end = std::min(end_particle, first + tile);
-        particle_passes_.kick_and_drift(pass, first, end, bound, tally);
-        if (records_written) write_particle_records(dt, {first, end});
-      }
+    const auto drift = [&](long first, long end) {
+      drift_particles(pass, {first, end}, bound, records_written, tally);
     };
     if (shared) {
       const ChunkQueue::OwnWork own = drift_chunks_.drain(drift);
@@ -192,6 +186,15 @@ Simulation::ListUpdate Simulation::kick_and_drift(bool& records_written) {
   if (moved != 0 || !neighbors_.walls_and_count_allow(particles_.size(), walls_))
     return ListUpdate::rebuild;
   return stale != 0 ? ListUpdate::refresh : ListUpdate::none;
+}
+
+void Simulation::drift_particles(const ParticlePassInput& pass, IndexBlock range, bool bound,
+                                 bool records, DriftTally& tally) {
+  for (long first = range.first; first < range.end; first += drift_tile) {
+    const long end = std::min(range.end, first + drift_tile);
+    particle_passes_.kick_and_drift(pass, first, end, bound, tally);
+    if (records) write_particle_records(settings_.time_step, {first, end});
+  }
 }
 
 // Second half of velocity Verlet for particles [b.first, b.end), with the forces just summed:

@@ -209,6 +209,13 @@ class Simulation {
   // (list_test) and against the build's (rebuild_test).
   ParticlePassInput particle_pass_input(bool list_test, bool rebuild_test);
   ListUpdate kick_and_drift(bool& records_written);
+  // kick_and_drift's arithmetic for particles [range.first, range.end) (the lists' tests as
+  // `pass` asks, `bound`: the sweep's bound too), in tiles of drift_tile particles, each tile's
+  // velocity records written right after it where `records`, while its velocities and forces are
+  // still in the caches. For the stages' drift and for a swept step's.
+  static constexpr long drift_tile = 256;  // particles: 25 kB of velocities, forces and records
+  void drift_particles(const ParticlePassInput& pass, IndexBlock range, bool bound, bool records,
+                       DriftTally& tally);
   // The step as one sweep over the particles (core/one_sweep.cpp): where no particle can move
   // half the list skin in this step (from list_displacement2_ and next_speed2_), no list update
   // can follow the drift, so each particle's drift, forces, gather and half kick run together,
