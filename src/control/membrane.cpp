@@ -21,6 +21,14 @@ Membrane::Extent Membrane::extent(const Simulation& sim) const {
 }
 
 namespace {
+// The membrane's beads lie scattered through the particles' arrays (one per cell column on each
+// face), and a step's passes have moved their lines out of the caches by the time the membrane
+// reads them: the per-step loops ask for the bead this many cells ahead (none past the end).
+constexpr size_t prefetch_cells = 16;
+uint32_t ahead(const std::vector<uint32_t>& beads, size_t k) {
+  return k + prefetch_cells < beads.size() ? beads[k + prefetch_cells] : UINT32_MAX;  // (none)
+}
+
 int cell_index(double x, double lo, double width, int n) {
   return std::clamp(static_cast<int>(std::floor((x - lo) / width)), 0, n - 1);
 }
@@ -59,6 +67,16 @@ void Membrane::identify(const Simulation& sim) {
       }
   }
   identified_ = true;
+  read_applied_forces(sim);
+}
+
+void Membrane::read_applied_forces(const Simulation& sim) {
+  for (int side = 0; side < 2; ++side) {
+    double force = 0.0;
+    for (uint32_t i : bead_[side])
+      if (i != none) force += std::abs(sim.particles().external_force[i][s_.axis]);
+    applied_force_[side] = force;
+  }
 }
 
 std::vector<double> Membrane::heights(const Simulation& sim, int side) const {
@@ -83,8 +101,16 @@ void Membrane::apply(Simulation& sim) {
     Vec3 inward{};
     inward[s_.axis] = (side == 0 ? 1.0 : -1.0) * s_.pressure * cell_area *
                       static_cast<double>(bead_[side].size()) / occupied;
-    for (uint32_t i : bead_[side])
-      if (i != none) sim.set_external_force(i, inward);
+    // (the sum applied_stress reports, formed as reading the forces back would form it)
+    double force = 0.0;
+    const std::vector<uint32_t>& beads = bead_[side];
+    for (size_t k = 0; k < beads.size(); ++k) {
+      if (const uint32_t j = ahead(beads, k); j != none)
+        __builtin_prefetch(&sim.particles().external_force[j], 1);
+      if (const uint32_t i = beads[k]; i != none)
+        sim.set_external_force(i, inward), force += std::abs(inward[s_.axis]);
+    }
+    applied_force_[side] = force;
   }
 }
 
@@ -97,10 +123,7 @@ void Membrane::start(Simulation& sim) {
 double Membrane::applied_stress(const Simulation& sim, int side) const {
   if (!identified_) return 0.0;
   const Extent e = extent(sim);
-  double force = 0.0;
-  for (uint32_t i : bead_[side])
-    if (i != none) force += std::abs(sim.particles().external_force[i][s_.axis]);
-  return force / ((e.hi_b - e.lo_b) * (e.hi_c - e.lo_c));
+  return applied_force_[side] / ((e.hi_b - e.lo_b) * (e.hi_c - e.lo_c));
 }
 
 void Membrane::before_step(Simulation& sim) {
@@ -123,12 +146,23 @@ void Membrane::release(Simulation& sim) {
   identified_ = false;
 }
 
+// heights() summed as measure() sums them, without the vector: the control asks for both
+// faces before every step and the test's sample after it.
 double Membrane::surface(const Simulation& sim, int side) const {
   if (!identified_) return NAN;
+  const ParticleStore& p = sim.particles();
+  const double s = side == 0 ? -1.0 : 1.0;
   double sum = 0.0;
   long n = 0;
-  for (double v : heights(sim, side))
+  const std::vector<uint32_t>& beads = bead_[side];
+  for (size_t k = 0; k < beads.size(); ++k) {
+    if (const uint32_t j = ahead(beads, k); j != none)
+      __builtin_prefetch(&p.position[j]), __builtin_prefetch(&p.radius[j]);
+    const uint32_t i = beads[k];
+    if (i == none) continue;
+    const double v = p.position[i][s_.axis] + s * p.radius[i];
     if (!std::isnan(v)) sum += v, ++n;
+  }
   return n ? sum / n : NAN;
 }
 
@@ -207,6 +241,7 @@ void Membrane::restore(StateReader& in, const Simulation& sim) {
       bead_[side][k] = found->second;
     }
   }
+  read_applied_forces(sim);  // the forces are the restored simulation's
 }
 
 }  // namespace grainlab
