@@ -79,9 +79,9 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
       contact_rates(n, v_end_i, tail_i.spin_at_end, lever_i, v_end_j, tail_j.spin_at_end, lever_j);
 
   // pair_entry: may this contact have begun during the step? Then the scalar law takes it. Its
-  // test costs 10 multiplications per lane, and multiplications bound this loop on Zen 4 (one
-  // more per batch: 0.3 % of the step; docs/performance.md sec. 30): it runs only where some lane
-  // of the batch might pass it, which a bound of its curvature term rules out for almost every
+  // test costs 10 multiplications per lane, and multiplications bound this loop on the VM's Zen 5
+  // (one more per batch: 0.3 % of the step; docs/performance.md sec. 30): it runs only where some
+  // lane of the batch might pass it, which a bound of its curvature term rules out for almost every
   // batch in a dense packing (SimdPairInput::curvature_bound; a lane with a NaN runs it).
   const bool drifted = drift > 0.0;
   vmask begun{};

@@ -154,7 +154,8 @@ GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
   // The inverse of store_lanes3: two lanes' (x, y, z) per vector, lane 2k in values 0..2 and lane
   // 2k + 1 in values 4..6 (the second loaded from 4 values before its place under a mask: the
   // values masked off are not read), then permuted into one vector per component. 8 masked loads
-  // and 7 permutations in place of three 8-value gathers (about 6 cycles each on Zen 4).
+  // and 7 permutations in place of three 8-value gathers (about 6 cycles each on the development
+  // VM's Zen 5).
   __m512d pair[4];
 #pragma GCC unroll 4
   for (int k = 0; k < 4; ++k) {
@@ -214,9 +215,10 @@ GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) 
 }
 
 // The velocities of each lane's particle from its record (particle_records): per lane a load of
-// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. (On
-// Zen 4 a 512-bit shuffle is a scarce operation: 96 more per batch made the step 11 % slower.) The
-// two halves are loaded where they are first needed, which keeps fewer vectors live.
+// values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. (On the
+// development VM's Zen 5 a 512-bit shuffle is a scarce operation: 96 more per batch made the step
+// 11 % slower.) The two halves are loaded where they are first needed, which keeps fewer vectors
+// live.
 using vd4 = double __attribute__((vector_size(32)));
 struct RecordHead {  // values 0..7
   V3 velocity, spin;
