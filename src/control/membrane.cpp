@@ -95,7 +95,10 @@ void Membrane::apply(Simulation& sim) {
   for (int side = 0; side < 2; ++side) {
     long occupied = 0;
     for (uint32_t i : bead_[side]) occupied += i != none;
-    if (occupied == 0) continue;
+    if (occupied == 0) {
+      applied_force_[side] = 0.0;
+      continue;
+    }
     // Each cell's share of p x face area, pushing inward along the axis; empty cells' shares go
     // to the occupied ones.
     Vec3 inward{};
@@ -146,8 +149,8 @@ void Membrane::release(Simulation& sim) {
   identified_ = false;
 }
 
-// heights() summed as measure() sums them, without the vector: the control asks for both
-// faces before every step and the test's sample after it.
+// heights() summed as measure() sums them, without the vector: the plane strain test's sample
+// asks for both faces after every step (and a servo-held control before it).
 double Membrane::surface(const Simulation& sim, int side) const {
   if (!identified_) return NAN;
   const ParticleStore& p = sim.particles();

@@ -101,9 +101,11 @@ class Membrane : public StepListener {
   int n_b_ = 0, n_c_ = 0;                      // 0: not laid yet
   std::array<std::vector<uint32_t>, 2> bead_;  // storage index per cell (none: empty)
   bool identified_ = false;
-  // N: the sum over each face's beads of their external force along the axis, in cell order
-  // (what applied_stress reports over the face area; read every step by the tests, where
-  // reading it back from 2 x 2,500 scattered particles had cost about 50 us a step).
+  // N: the sum over each face's beads of their external force along the axis, in cell order:
+  // what applied_stress reports over the face area. The plane strain test's sample reads it every
+  // step, where reading it back from 2 x 2,500 scattered particles had cost about 50 us. Kept, not
+  // read: the membrane must be the only writer of its simulation's external forces (as in the
+  // plane strain test); a second writer would leave the sum stale.
   std::array<double, 2> applied_force_{};
 };
 
