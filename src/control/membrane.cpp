@@ -79,13 +79,15 @@ void Membrane::read_applied_forces(const Simulation& sim) {
   }
 }
 
-std::vector<double> Membrane::heights(const Simulation& sim, int side) const {
+double Membrane::height(const Simulation& sim, uint32_t i, int side) const {
   const ParticleStore& p = sim.particles();
-  const double s = side == 0 ? -1.0 : 1.0;
+  return p.position[i][s_.axis] + (side == 0 ? -1.0 : 1.0) * p.radius[i];
+}
+
+std::vector<double> Membrane::heights(const Simulation& sim, int side) const {
   std::vector<double> h(bead_[side].size(), NAN);
   for (size_t k = 0; k < h.size(); ++k)
-    if (const uint32_t i = bead_[side][k]; i != none)
-      h[k] = p.position[i][s_.axis] + s * p.radius[i];
+    if (const uint32_t i = bead_[side][k]; i != none) h[k] = height(sim, i, side);
   return h;
 }
 
@@ -154,7 +156,6 @@ void Membrane::release(Simulation& sim) {
 double Membrane::surface(const Simulation& sim, int side) const {
   if (!identified_) return NAN;
   const ParticleStore& p = sim.particles();
-  const double s = side == 0 ? -1.0 : 1.0;
   double sum = 0.0;
   long n = 0;
   const std::vector<uint32_t>& beads = bead_[side];
@@ -163,7 +164,7 @@ double Membrane::surface(const Simulation& sim, int side) const {
       __builtin_prefetch(&p.position[j]), __builtin_prefetch(&p.radius[j]);
     const uint32_t i = beads[k];
     if (i == none) continue;
-    const double v = p.position[i][s_.axis] + s * p.radius[i];
+    const double v = height(sim, i, side);
     if (!std::isnan(v)) sum += v, ++n;
   }
   return n ? sum / n : NAN;

@@ -91,6 +91,9 @@ class Membrane : public StepListener {
   Extent extent(const Simulation& sim) const;
   // Outer surface coordinate of each cell of `side` (NaN where the cell is empty).
   std::vector<double> heights(const Simulation& sim, int side) const;
+  // Outer surface coordinate of particle i on `side` (x - r on the low face, x + r on the high):
+  // what heights() and surface() read, so that the two agree bit for bit.
+  double height(const Simulation& sim, uint32_t i, int side) const;
   // applied_force_ from the particles' external forces now (after an identification or a
   // restore; apply() sets it as it applies them).
   void read_applied_forces(const Simulation& sim);
