@@ -50,22 +50,21 @@
 
 namespace grainlab {
 
-// The most threads a step runs as one sweep with automatically. Measured on 1 and 2 threads
-// (the 2-core development VM). On a 16-core Xeon the sweep ran at 0.84 to 0.97 of the stages'
-// speed at 8 and 16 threads, in every workload from 11.6k to 745k beads (docs/performance.md
-// sec. 31): there the stages share their chunks, and the sweep's blocks were fixed (it shares
-// only their tails since sec. 33, not measured on 16 cores).
-constexpr int one_sweep_automatic_threads = 2;
 // On more than one thread the last 1 / tail_share of each block is shared among the threads: its
 // drift in stage 1, its rows in stage 3 and its sums and kicks in stage 4 (sweep_step).
 constexpr long tail_share = 8;
 
 void Simulation::choose_one_sweep() {
-  const bool pays = one_sweep_pays(partner_reach_.mean, partner_reach_.farthest, l2_cache_bytes(),
-                                   l3_cache_bytes());
-  one_sweep_wanted_ =
-      uses_pair_kernel() && !entry_owners_.empty() &&
-      (one_sweep_choice_ == OneSweep::always || (one_sweep_choice_ == OneSweep::automatic && pays));
+  // (automatic: only on the thread counts it was measured on, where it paid there. On a 16-core
+  // Xeon the sweep ran at 0.84 to 0.97 of the stages' speed at 8 and 16 threads, in every
+  // workload from 11.6k to 745k beads (docs/performance.md sec. 31): there the stages share
+  // their chunks, and the sweep's blocks were fixed; it shares only their tails since sec. 33,
+  // not measured on 16 cores)
+  one_sweep_automatic_team_ = one_sweep_team(partner_reach_.mean, partner_reach_.farthest,
+                                             l2_cache_bytes(), l3_cache_bytes());
+  one_sweep_wanted_ = uses_pair_kernel() && !entry_owners_.empty() &&
+                      (one_sweep_choice_ == OneSweep::always ||
+                       (one_sweep_choice_ == OneSweep::automatic && one_sweep_automatic_team_ > 0));
   // (next_speed2_, the bound of the next drift's speeds, stays: the kernel reads it too)
   if (!one_sweep_wanted_) list_displacement2_ = position_scale2_ = INFINITY;
 }
@@ -73,9 +72,9 @@ void Simulation::choose_one_sweep() {
 bool Simulation::one_sweep_possible() {
   if (!one_sweep_wanted_) return false;
   const size_t n = particles_.size();
-  // (automatic: only on the thread counts it was measured on; docs/performance.md sec. 27)
+  // (automatic: only on the teams one_sweep_team allows)
   if (one_sweep_choice_ == OneSweep::automatic &&
-      step_team(static_cast<long>(n)) > one_sweep_automatic_threads)
+      step_team(static_cast<long>(n)) > one_sweep_automatic_team_)
     return false;
   if (!neighbors_.built_for(n) || neighbors_.rebuild_possible_before_refresh() ||
       !neighbors_.walls_and_count_allow(n, walls_))

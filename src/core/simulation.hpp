@@ -130,10 +130,10 @@ class Simulation {
     list_displacement2_ = 0.0;
     for (StepListener* l : listeners_) l->after_rebuild(*this);
   }
-  // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the
-  // partners lie beyond the L2, the drift's lead fits in the L3: one_sweep_pays) on up to 2
-  // threads (where it was measured), always where it can, or never (in stages). The results are
-  // the same. Not saved with the state.
+  // Whether a step runs as one sweep (core/one_sweep.cpp): automatic where it pays (the drift's
+  // lead fits in the L3; on up to 2 threads where the partners lie beyond the L2, on one where
+  // they lie inside it: one_sweep_team), always where it can, or never (in stages). The results
+  // are the same. Not saved with the state.
   enum class OneSweep { automatic, always, never };
   void set_one_sweep(OneSweep choice) {
     one_sweep_choice_ = choice;
@@ -282,6 +282,7 @@ class Simulation {
   double list_displacement2_ = INFINITY, position_scale2_ = INFINITY, next_speed2_ = INFINITY;
   OneSweep one_sweep_choice_ = OneSweep::automatic;
   bool one_sweep_wanted_ = false;  // the choice for this list: the drift and kick form the bound
+  int one_sweep_automatic_team_ = 0;  // the largest team it sweeps on when automatic (one_sweep_team)
   long one_sweep_steps_ = 0;
   StepPhaseTimes phase_times_;
   double phase_regions_ = 0.0;  // s: this step's parallel regions, while the timers are on

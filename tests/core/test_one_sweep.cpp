@@ -134,20 +134,26 @@ TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
   }
 }
 
-TEST(OneSweep, AutomaticWherePartnersLieBeyondTheL2AndTheDriftsLeadFitsTheL3) {
-  // at about 1.5 KiB a bead: a mean reach beyond the L2, a farthest partner within a quarter of
-  // the L3
-  EXPECT_FALSE(one_sweep_pays(600.0, 1200, 1L << 20, 32L << 20));   // the reach inside the L2
-  EXPECT_TRUE(one_sweep_pays(1475.0, 2952, 1L << 20, 32L << 20));   // dense-88k on the VM
-  EXPECT_FALSE(one_sweep_pays(3000.0, 7933, 1L << 20, 32L << 20));  // 744,704 beads there
-  EXPECT_TRUE(one_sweep_pays(3000.0, 7933, 1L << 20, 64L << 20));   // a larger L3
-  EXPECT_FALSE(one_sweep_pays(1475.0, 2952, 4L << 20, 32L << 20));  // a larger L2
+TEST(OneSweep, AutomaticWhereTheDriftsLeadFitsTheL3OnTwoThreadsWherePartnersLieBeyondTheL2) {
+  // at about 1.5 KiB a bead: the farthest partner's distance in the particle order within a
+  // quarter of the L3; the mean reach beyond the L2 for 2 threads, within it for 1
+  EXPECT_EQ(one_sweep_team(600.0, 1200, 1L << 20, 32L << 20), 1);   // the reach inside the L2
+  EXPECT_EQ(one_sweep_team(1475.0, 2952, 1L << 20, 32L << 20), 2);  // dense-88k on the VM
+  EXPECT_EQ(one_sweep_team(3000.0, 7933, 1L << 20, 32L << 20), 0);  // 744,704 beads there
+  EXPECT_EQ(one_sweep_team(3000.0, 7933, 1L << 20, 64L << 20), 2);  // a larger L3
+  EXPECT_EQ(one_sweep_team(1475.0, 2952, 4L << 20, 32L << 20), 1);  // a larger L2
+  EXPECT_EQ(one_sweep_team(600.0, 1200, 1L << 20, 4L << 20), 0);    // a small L3
   EXPECT_GT(l3_cache_bytes(), 0);
   // 1,728 beads: a row's partners lie about 150 beads ahead, some 230 KB, inside an L2 of 256 KB
-  // or more
-  if (l2_cache_bytes() < (256L << 10)) GTEST_SKIP() << "an L2 smaller than 256 KB";
-  const SweepRun automatic = run(Simulation::OneSweep::automatic, 2, 200);
-  EXPECT_EQ(automatic.sweeps, 0);
+  // or more, and the farthest a few hundred, inside a quarter of an L3 of 4 MB or more.
+  // Automatic sweeps the steps the sweep can take on 1 thread, and none on 2.
+  if (l2_cache_bytes() < (256L << 10) || l3_cache_bytes() < (4L << 20))
+    GTEST_SKIP() << "an L2 under 256 KB or an L3 under 4 MB";
+  const SweepRun always = run(Simulation::OneSweep::always, 1, 200);
+  if (always.kernel == std::string("scalar")) GTEST_SKIP() << "the sweep needs the pair kernel";
+  EXPECT_GT(always.sweeps, 0);
+  EXPECT_EQ(run(Simulation::OneSweep::automatic, 1, 200).sweeps, always.sweeps);
+  EXPECT_EQ(run(Simulation::OneSweep::automatic, 2, 200).sweeps, 0);
 }
 
 TEST(OneSweep, ACommandBetweenStepsForgetsTheBound) {
