@@ -144,9 +144,9 @@ TEST(OneSweep, AutomaticWhereTheDriftsLeadFitsTheL3OnTwoThreadsWherePartnersLieB
   EXPECT_EQ(one_sweep_team(1475.0, 2952, 4L << 20, 32L << 20), 1);  // a larger L2
   EXPECT_EQ(one_sweep_team(600.0, 1200, 1L << 20, 4L << 20), 0);    // a small L3
   EXPECT_GT(l3_cache_bytes(), 0);
-  // 1,728 beads: a row's partners lie about 150 beads ahead, some 230 KB, inside an L2 of 256 KB
-  // or more, and the farthest a few hundred, inside a quarter of an L3 of 4 MB or more.
-  // Automatic sweeps the steps the sweep can take on 1 thread, and none on 2.
+  // 1,728 beads: a row's farthest partner lies about 125 beads ahead on average, some 190 KB,
+  // inside an L2 of 256 KB or more, and 284 at most (about 440 KB), inside a quarter of an L3 of
+  // 4 MB or more. Automatic sweeps the steps the sweep can take on 1 thread, and none on 2.
   if (l2_cache_bytes() < (256L << 10) || l3_cache_bytes() < (4L << 20))
     GTEST_SKIP() << "an L2 under 256 KB or an L3 under 4 MB";
   const SweepRun always = run(Simulation::OneSweep::always, 1, 200);
