@@ -226,7 +226,7 @@ SimdPairKernel select_simd_pair_kernel();
 bool prefetch_pays(double partner_reach, long l2_cache_bytes);
 // How far ahead a CSR pair list's partners lie in the particle order: the mean over the rows of
 // the farthest partner's distance (the partner_reach of prefetch_pays; rows without entries left
-// out), and the farthest over all rows (one_sweep_pays' max_partner_ahead). 0 when all are empty.
+// out), and the farthest over all rows (one_sweep_team's max_partner_ahead). 0 when all are empty.
 struct PartnerReach {
   double mean = 0.0;
   long farthest = 0;
