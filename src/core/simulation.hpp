@@ -281,8 +281,8 @@ class Simulation {
   // next drift will move a particle at (m^2/s^2, from the last half kick). Infinite: not known.
   double list_displacement2_ = INFINITY, position_scale2_ = INFINITY, next_speed2_ = INFINITY;
   OneSweep one_sweep_choice_ = OneSweep::automatic;
-  bool one_sweep_wanted_ = false;  // the choice for this list: the drift and kick form the bound
-  int one_sweep_automatic_team_ = 0;  // the largest team it sweeps on when automatic (one_sweep_team)
+  bool one_sweep_wanted_ = false;     // the choice for this list: the drift and kick form the bound
+  int one_sweep_automatic_team_ = 0;  // most threads it sweeps on if automatic (one_sweep_team)
   long one_sweep_steps_ = 0;
   StepPhaseTimes phase_times_;
   double phase_regions_ = 0.0;  // s: this step's parallel regions, while the timers are on
