@@ -19,23 +19,6 @@
 
 namespace {
 
-// How long an OpenMP thread that waits at a barrier spins before it sleeps. GCC's runtime spins
-// 300,000 rounds by default: on an idle machine the fastest, but when another process holds one
-// of the cores, the spinning thread keeps its core while the thread it waits for shares the
-// other, and a run takes 2.4 times as long (docs/performance.md sec. 15). Sleeping at once
-// (OMP_WAIT_POLICY=passive) is safe but pays a wake-up at every barrier (up to 1.2x slower on
-// an idle machine). 1,000 rounds keep the idle speed within the noise, but a run still took
-// 2.25x its idle time with a busy loop on the other core (sec. 18). So `run` and `prepare` with a
-// thread count (--threads, OMP_NUM_THREADS) measure first, for 0.1 s, how many CPUs other
-// processes keep busy, and let the threads sleep at once when they would not each find a free one
-// (io/wait_policy.hpp). Without one, their team follows the free CPUs while they run
-// (io/team_follower.hpp, sec. 31) and its threads spin a while. libgomp reads its
-// settings when it is loaded, before main, so the setting takes a restart of the program with it
-// in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept, and threads bound
-// by OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY get no restart (it would inherit the first
-// thread's single CPU).
-constexpr const char* barrier_spin_rounds = "1000";
-
 // The thread count of --threads N, or 0 when the command line gives none.
 int threads_option(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) {
@@ -53,6 +36,22 @@ int requested_threads(int argc, char** argv, int cpus) {
   return cpus;
 }
 
+// How long an OpenMP thread that waits at a barrier spins before it sleeps. GCC's runtime spins
+// 300,000 rounds by default: on an idle machine the fastest, but when another process holds one
+// of the cores, the spinning thread keeps its core while the thread it waits for shares the
+// other, and a run takes 2.4 times as long (docs/performance.md sec. 15). Sleeping at once
+// (OMP_WAIT_POLICY=passive) is safe but pays a wake-up at every barrier (up to 1.2x slower on
+// an idle machine). 1,000 rounds keep the idle speed within the noise, but a run still took
+// 2.25x its idle time with a busy loop on the other core (sec. 18). So `run` and `prepare` measure
+// first, for 0.1 s, how many CPUs other processes keep busy (those of lower priority, nice, apart:
+// niced_processes_yield). With a thread count (--threads, OMP_NUM_THREADS) the threads sleep at
+// once when they would not each find a free CPU (io/wait_policy.hpp). Without one, their team
+// follows the free CPUs while they run (io/team_follower.hpp, sec. 31) and its threads spin a
+// while, a long while where processes of lower priority are busy (barrier_spin_rounds, sec. 38).
+// libgomp reads its settings when it is loaded, before main, so the setting takes a restart of
+// the program with it in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept,
+// and threads bound by OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY get no restart (it would
+// inherit the first thread's single CPU).
 void choose_barrier_waiting(int argc, char** argv) {
   using namespace grainlab;
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
@@ -69,9 +68,12 @@ void choose_barrier_waiting(int argc, char** argv) {
     return;
   }
   WaitPolicy policy = WaitPolicy::bounded_spin;
+  const char* spin_rounds = barrier_spin_rounds(false, 0.0);
   // A team that follows the free CPUs (io/team_follower.hpp) leaves a CPU that another process
-  // holds within two seconds: its threads spin a while, the fastest on free CPUs.
-  if (long_run && !team_follows_free_cpus(threads_option(argc, argv) > 0)) {
+  // holds within two seconds: its threads spin a while, the fastest on free CPUs, and a long
+  // while where only processes of lower priority (nice) are busy.
+  const bool follows = team_follows_free_cpus(threads_option(argc, argv) > 0);
+  if (long_run) {
     const std::vector<int> usable = usable_cpus();
     const int cpus = usable.empty() ? static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)))
                                     : static_cast<int>(usable.size());
@@ -80,15 +82,24 @@ void choose_barrier_waiting(int argc, char** argv) {
     if (before) std::this_thread::sleep_for(std::chrono::milliseconds(100));
     const std::optional<CpuTimes> after = before ? read_cpu_times(usable) : std::nullopt;
     if (before && after) {
-      const double busy = busy_cpus_between(*before, *after, cpus);
-      policy = choose_wait_policy(threads, cpus, busy);
-      if (policy == WaitPolicy::passive && !quiet)
-        fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
+      const bool niced_yield = niced_processes_yield();
+      const double busy = busy_cpus_between(competing_times(*before, niced_yield),
+                                            competing_times(*after, niced_yield), cpus);
+      const double niced = niced_yield ? busy_cpus_between({before->niced, before->total},
+                                                           {after->niced, after->total}, cpus)
+                                       : 0.0;
+      if (!follows) {
+        policy = choose_wait_policy(threads, cpus, busy);
+        if (policy == WaitPolicy::passive && !quiet)
+          fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
+      }
+      spin_rounds = barrier_spin_rounds(follows, niced);
+      if (follows && niced >= 0.5 && !quiet)
+        fmt::print(stderr, "grainlab: {}\n", describe_niced_spin(niced, cpus));
     }
   }
-  const bool set = policy == WaitPolicy::passive
-                       ? setenv("OMP_WAIT_POLICY", "passive", 0) == 0
-                       : setenv("GOMP_SPINCOUNT", barrier_spin_rounds, 0) == 0;
+  const bool set = policy == WaitPolicy::passive ? setenv("OMP_WAIT_POLICY", "passive", 0) == 0
+                                                 : setenv("GOMP_SPINCOUNT", spin_rounds, 0) == 0;
   if (!set) return;
   execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default
 }

@@ -73,13 +73,13 @@ void TeamFollower::follow(std::vector<int> cpus, bool report, double interval_s)
   const int count = static_cast<int>(cpus.size());
   const double ticks_per_s = static_cast<double>(sysconf(_SC_CLK_TCK));
   TeamChoice choice(count);
-  std::optional<CpuTimes> before = read_cpu_times(cpus);
+  std::optional<CpuTimes> before = read_competing_cpu_times(cpus);
   double own_before = own_cpu_seconds();
   if (!before || !(ticks_per_s > 0.0)) return;  // (the team stays OpenMP's)
   const auto interval = std::chrono::duration<double>(interval_s);
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, interval, [this] { return stop_; })) {
-    const std::optional<CpuTimes> after = read_cpu_times(cpus);
+    const std::optional<CpuTimes> after = read_competing_cpu_times(cpus);
     const double own_after = own_cpu_seconds();
     if (!after) return;
     const double others =

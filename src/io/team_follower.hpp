@@ -14,6 +14,9 @@
 // A change of team takes two readings in a row that ask for it, so that a burst of another
 // process (a compiler's one file, an editor) does not move the team back and forth. A hypervisor's
 // steal time counts as busy: on a virtual machine those CPUs are not free either.
+// Processes of lower priority (a positive nice value) do not count where this process runs at
+// nice 0 or below: they leave the CPU to its threads (read_competing_cpu_times,
+// io/wait_policy.hpp).
 #pragma once
 
 #include <condition_variable>

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 #include <sched.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <sstream>
 #include <string_view>
@@ -27,6 +29,7 @@ std::optional<CpuTimes> line_times(std::istringstream& fields) {
   CpuTimes t;
   t.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];
   t.total = t.busy + v[3] + v[4];
+  t.niced = v[1];
   return t;
 }
 
@@ -60,6 +63,7 @@ std::optional<CpuTimes> parse_cpu_times(const std::string& proc_stat,
     if (!t) return std::nullopt;
     sum.busy += t->busy;
     sum.total += t->total;
+    sum.niced += t->niced;
     ++found;
   }
   if (found != (cpus.empty() ? 1 : cpus.size())) return std::nullopt;
@@ -80,6 +84,26 @@ std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus) {
   return parse_cpu_times(read_file("/proc/stat"), cpus);
 }
 
+bool niced_processes_yield() {
+  errno = 0;
+  const int own_nice = getpriority(PRIO_PROCESS, 0);  // (-1 is a valid value: errno tells)
+  return errno == 0 && own_nice <= 0;
+}
+
+CpuTimes competing_times(const CpuTimes& t, bool niced_yield) {
+  if (!niced_yield) return t;
+  CpuTimes c = t;
+  c.busy -= t.niced;
+  c.niced = 0.0;
+  return c;
+}
+
+std::optional<CpuTimes> read_competing_cpu_times(const std::vector<int>& cpus) {
+  const std::optional<CpuTimes> t = read_cpu_times(cpus);
+  if (!t) return std::nullopt;
+  return competing_times(*t, niced_processes_yield());
+}
+
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus) {
   const double total = after.total - before.total;
   if (!(total > 0.0)) return 0.0;
@@ -96,6 +120,10 @@ int team_for_free_cpus(int most, int cpus, double busy_cpus) {
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
   return team_for_free_cpus(threads, cpus, busy_cpus) < threads ? WaitPolicy::passive
                                                                 : WaitPolicy::bounded_spin;
+}
+
+const char* barrier_spin_rounds(bool team_follows, double niced_cpus) {
+  return team_follows && niced_cpus >= 0.5 ? "300000" : "1000";
 }
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,
@@ -124,6 +152,14 @@ std::string describe_passive_choice(int threads, int cpus, double busy_cpus) {
       "other processes keep {:.1f} of {} CPUs busy: the {} threads sleep when they wait "
       "(OMP_WAIT_POLICY=passive; set it or GOMP_SPINCOUNT yourself to choose)",
       busy_cpus, cpus, threads);
+}
+
+std::string describe_niced_spin(double niced_cpus, int cpus) {
+  return fmt::format(
+      "processes of lower priority (nice) keep {:.1f} of {} CPUs busy: the threads spin at "
+      "barriers rather than sleep, which keeps their CPUs (GOMP_SPINCOUNT=300000; set it "
+      "yourself to choose)",
+      niced_cpus, cpus);
 }
 
 }  // namespace grainlab

@@ -21,6 +21,7 @@ namespace grainlab {
 struct CpuTimes {
   double busy = 0.0;   // user, nice, system, irq, softirq, steal
   double total = 0.0;  // the above with idle and iowait
+  double niced = 0.0;  // nice alone: processes with a positive nice value (part of busy)
 };
 
 // From the text of /proc/stat, the sum of the lines "cpuK" for K in `cpus`, sorted (the CPUs this
@@ -37,6 +38,24 @@ std::vector<int> usable_cpus();
 // parse_cpu_times of this machine's /proc/stat now; nullopt where it cannot be read.
 std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus);
 
+// Whether processes with a positive nice value leave their CPU to this process's threads: when
+// this process runs at nice 0 or below. Linux's scheduler gives a process at nice 10 about a
+// tenth of a CPU against one at nice 0, at nice 19 about 1.5 %; a thread of this process that
+// spins at a barrier or wakes from one takes the CPU back from it at once. Counted as busy, a
+// `nice 19` busy loop on one of the 2 cores made a run with `--threads 2` sleep at every barrier
+// (the short reference shear 13.2-18.6 s; 9.6-11.3 s with the loop not counted, 7.6-9.5 s idle),
+// and the team that follows the free CPUs dropped to one thread in some runs
+// (docs/performance.md sec. 38).
+bool niced_processes_yield();
+
+// The jiffies that compete with this process's threads: `t` less its niced jiffies where
+// `niced_yield` (niced_processes_yield), else `t` as it is.
+CpuTimes competing_times(const CpuTimes& t, bool niced_yield);
+
+// read_cpu_times as competing_times for this process: what the wait policy and the team that
+// follows the free CPUs count as busy.
+std::optional<CpuTimes> read_competing_cpu_times(const std::vector<int>& cpus);
+
 // How many of `cpus` CPUs were busy on average between two readings of the same set.
 double busy_cpus_between(const CpuTimes& before, const CpuTimes& after, int cpus);
 
@@ -50,6 +69,20 @@ int team_for_free_cpus(int most, int cpus, double busy_cpus);
 // (team_for_free_cpus), sleep at once otherwise.
 enum class WaitPolicy { bounded_spin, passive };
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
+
+// How many rounds a thread that waits at a barrier spins before it sleeps (GOMP_SPINCOUNT), for
+// threads that spin (bounded_spin). 1,000 (about 20 us on the development VM) where no process
+// of lower priority is busy: the fastest on an idle machine within the noise, and the least a
+// shared core costs a fixed team (a longer spin made one 2.5x slower with a busy loop on the
+// other core; docs/performance.md sec. 36). Where processes of lower priority keep at least half
+// a CPU busy (`niced_cpus`, counted where niced_processes_yield) and the team follows the free
+// CPUs (io/team_follower.hpp: a process of normal priority that takes a CPU later costs it a
+// thread within two seconds, not a long spin at every barrier), 300,000 (libgomp's own): a
+// thread that sleeps hands its CPU to the niced process and waits for the scheduler to take it
+// back; spinning, it keeps it. With a `nice 19` busy loop on one of the 2 cores the short
+// reference shear took 8.0-8.7 s with the team following the free CPUs, against 9.8-16.5 s
+// before (1,000 rounds, the loop counted as busy) and 7.6-9.5 s idle (sec. 38).
+const char* barrier_spin_rounds(bool team_follows, double niced_cpus);
 
 // Whether the OpenMP environment binds threads to CPUs, from the values of OMP_PROC_BIND,
 // OMP_PLACES and GOMP_CPU_AFFINITY (null: unset). libgomp then binds the program's first thread
@@ -66,5 +99,8 @@ std::string describe_bound_threads();
 // One line for the user when the threads will sleep at once: what was measured, what was chosen
 // and how to choose otherwise.
 std::string describe_passive_choice(int threads, int cpus, double busy_cpus);
+// What a run says when its threads spin long for processes of lower priority
+// (barrier_spin_rounds).
+std::string describe_niced_spin(double niced_cpus, int cpus);
 
 }  // namespace grainlab

@@ -1,6 +1,12 @@
 // The barrier wait policy chosen from the machine's load (io/wait_policy.hpp): /proc/stat parsed,
 // the busy CPUs between two readings, and the choice, against hand-computed values.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 
 #include "io/wait_policy.hpp"
 
@@ -16,6 +22,7 @@ TEST(WaitPolicy, ParsesTheTotalCpuLineOfProcStat) {
   ASSERT_TRUE(t);
   EXPECT_DOUBLE_EQ(t->busy, 100 + 5 + 20 + 1 + 2 + 3);
   EXPECT_DOUBLE_EQ(t->total, 131 + 800 + 10);
+  EXPECT_DOUBLE_EQ(t->niced, 5);  // the nice column alone
   // an old kernel's line without irq, softirq and steal
   const auto old = parse_cpu_times("cpu 10 0 5 85 0\n");
   ASSERT_TRUE(old);
@@ -35,6 +42,10 @@ TEST(WaitPolicy, SumsOnlyTheCpusTheProcessMayRunOn) {
   ASSERT_TRUE(two);
   EXPECT_DOUBLE_EQ(two->busy, 20 + 70);
   EXPECT_DOUBLE_EQ(two->total, 100 + 200);
+  const auto niced =
+      parse_cpu_times("cpu0 10 4 0 86 0\ncpu1 0 30 0 70 0\ncpu2 0 9 0 91 0\n", {0, 1});
+  ASSERT_TRUE(niced);
+  EXPECT_DOUBLE_EQ(niced->niced, 4 + 30);
   const auto one = parse_cpu_times(text, {0});
   ASSERT_TRUE(one);
   EXPECT_DOUBLE_EQ(one->busy, 10);
@@ -46,6 +57,54 @@ TEST(WaitPolicy, BusyCpusAreTheBusyShareOfTheElapsedJiffies) {
   EXPECT_DOUBLE_EQ(busy_cpus_between({50, 400}, {150, 600}, 2), 1.0);
   EXPECT_DOUBLE_EQ(busy_cpus_between({50, 400}, {55, 600}, 2), 0.05);
   EXPECT_DOUBLE_EQ(busy_cpus_between({50, 400}, {50, 400}, 2), 0.0);  // no time elapsed
+}
+
+TEST(WaitPolicy, NicedJiffiesCompeteOnlyWhereTheyDoNotYield) {
+  CpuTimes t;
+  t.busy = 130, t.total = 400, t.niced = 100;
+  const CpuTimes yielding = competing_times(t, true);
+  EXPECT_DOUBLE_EQ(yielding.busy, 30);
+  EXPECT_DOUBLE_EQ(yielding.total, 400);
+  EXPECT_DOUBLE_EQ(yielding.niced, 0);
+  const CpuTimes counted = competing_times(t, false);
+  EXPECT_DOUBLE_EQ(counted.busy, 130);
+  EXPECT_DOUBLE_EQ(counted.niced, 100);
+  // a nice 19 busy loop on one of 2 CPUs over 200 jiffies, this process's threads on the other
+  CpuTimes before, after;
+  before.busy = 1000, before.total = 5000, before.niced = 600;
+  after.busy = 1200, after.total = 5200, after.niced = 700;
+  EXPECT_DOUBLE_EQ(
+      busy_cpus_between(competing_times(before, true), competing_times(after, true), 2), 1.0);
+  EXPECT_DOUBLE_EQ(busy_cpus_between(before, after, 2), 2.0);
+}
+
+TEST(WaitPolicy, NicedProcessesYieldToAProcessAtNiceZeroOrBelowOnly) {
+  const int own = (errno = 0, getpriority(PRIO_PROCESS, 0));
+  ASSERT_EQ(errno, 0);
+  EXPECT_EQ(niced_processes_yield(), own <= 0);
+  // A child at a higher nice value than the processes it would count as niced: they do not
+  // yield to it (raising one's own nice value needs no privilege).
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    if (setpriority(PRIO_PROCESS, 0, std::max(own, 0) + 5) != 0) _exit(2);
+    _exit(niced_processes_yield() ? 1 : 0);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+TEST(WaitPolicy, ThreadsSpinLongOnlyForAFollowingTeamAndProcessesOfLowerPriority) {
+  EXPECT_STREQ(barrier_spin_rounds(false, 0.0), "1000");
+  EXPECT_STREQ(barrier_spin_rounds(true, 0.0), "1000");    // idle machine
+  EXPECT_STREQ(barrier_spin_rounds(true, 0.45), "1000");   // less than half a CPU niced
+  EXPECT_STREQ(barrier_spin_rounds(true, 0.5), "300000");  // a nice 19 loop on one of 2 CPUs
+  EXPECT_STREQ(barrier_spin_rounds(false, 1.0), "1000");   // a fixed team: never long
+  const std::string said = describe_niced_spin(1.02, 2);
+  EXPECT_NE(said.find("1.0 of 2 CPUs"), std::string::npos) << said;
+  EXPECT_NE(said.find("GOMP_SPINCOUNT"), std::string::npos) << said;
 }
 
 TEST(WaitPolicy, ThreadsSleepAtOnceOnlyWhenTheyWouldNotEachFindAFreeCpu) {
