@@ -94,8 +94,8 @@ void choose_barrier_waiting(int argc, char** argv) {
           fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
       }
       spin_rounds = barrier_spin_rounds(follows, niced);
-      if (follows && niced >= 0.5 && !quiet)
-        fmt::print(stderr, "grainlab: {}\n", describe_niced_spin(niced, cpus));
+      if (follows && niced >= niced_cpus_for_long_spin && !quiet)
+        fmt::print(stderr, "grainlab: {}\n", describe_niced_spin(niced, cpus, spin_rounds));
     }
   }
   const bool set = policy == WaitPolicy::passive ? setenv("OMP_WAIT_POLICY", "passive", 0) == 0

@@ -123,7 +123,7 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
 }
 
 const char* barrier_spin_rounds(bool team_follows, double niced_cpus) {
-  return team_follows && niced_cpus >= 0.5 ? "300000" : "1000";
+  return team_follows && niced_cpus >= niced_cpus_for_long_spin ? "300000" : "1000";
 }
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,
@@ -154,12 +154,12 @@ std::string describe_passive_choice(int threads, int cpus, double busy_cpus) {
       busy_cpus, cpus, threads);
 }
 
-std::string describe_niced_spin(double niced_cpus, int cpus) {
+std::string describe_niced_spin(double niced_cpus, int cpus, const char* spin_rounds) {
   return fmt::format(
       "processes of lower priority (nice) keep {:.1f} of {} CPUs busy: the threads spin at "
-      "barriers rather than sleep, which keeps their CPUs (GOMP_SPINCOUNT=300000; set it "
+      "barriers rather than sleep, which keeps their CPUs (GOMP_SPINCOUNT={}; set it "
       "yourself to choose)",
-      niced_cpus, cpus);
+      niced_cpus, cpus, spin_rounds);
 }
 
 }  // namespace grainlab
