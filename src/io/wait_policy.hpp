@@ -43,7 +43,7 @@ std::optional<CpuTimes> read_cpu_times(const std::vector<int>& cpus);
 // tenth of a CPU against one at nice 0, at nice 19 about 1.5 %; a thread of this process that
 // spins at a barrier or wakes from one takes the CPU back from it at once. Counted as busy, a
 // `nice 19` busy loop on one of the 2 cores made a run with `--threads 2` sleep at every barrier
-// (the short reference shear 13.2-18.6 s; 9.6-11.3 s with the loop not counted, 7.6-9.5 s idle),
+// (the short reference shear 12.7-18.6 s; 9.6-14.4 s with the loop not counted, 7.6-9.5 s idle),
 // and the team that follows the free CPUs dropped to one thread in some runs
 // (docs/performance.md sec. 38).
 bool niced_processes_yield();
