@@ -94,7 +94,7 @@ void choose_barrier_waiting(int argc, char** argv) {
           fmt::print(stderr, "grainlab: {}\n", describe_passive_choice(threads, cpus, busy));
       }
       spin_rounds = barrier_spin_rounds(follows, niced);
-      if (follows && niced >= niced_cpus_for_long_spin && !quiet)
+      if (spins_long_for_niced(follows, niced) && !quiet)
         fmt::print(stderr, "grainlab: {}\n", describe_niced_spin(niced, cpus, spin_rounds));
     }
   }

@@ -122,8 +122,12 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus) {
                                                                 : WaitPolicy::bounded_spin;
 }
 
+bool spins_long_for_niced(bool team_follows, double niced_cpus) {
+  return team_follows && niced_cpus >= 0.5;
+}
+
 const char* barrier_spin_rounds(bool team_follows, double niced_cpus) {
-  return team_follows && niced_cpus >= niced_cpus_for_long_spin ? "300000" : "1000";
+  return spins_long_for_niced(team_follows, niced_cpus) ? "300000" : "1000";
 }
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,

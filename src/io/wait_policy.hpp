@@ -82,8 +82,9 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
 // back; spinning, it keeps it. With a `nice 19` busy loop on one of the 2 cores the short
 // reference shear took 8.0-8.7 s with the team following the free CPUs, against 9.8-16.5 s
 // before (1,000 rounds, the loop counted as busy) and 7.6-9.5 s idle (sec. 38).
-constexpr double niced_cpus_for_long_spin = 0.5;
 const char* barrier_spin_rounds(bool team_follows, double niced_cpus);
+// Whether barrier_spin_rounds gives the long spin (what a run says on stderr when it does).
+bool spins_long_for_niced(bool team_follows, double niced_cpus);
 
 // Whether the OpenMP environment binds threads to CPUs, from the values of OMP_PROC_BIND,
 // OMP_PLACES and GOMP_CPU_AFFINITY (null: unset). libgomp then binds the program's first thread

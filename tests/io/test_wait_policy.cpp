@@ -102,6 +102,9 @@ TEST(WaitPolicy, ThreadsSpinLongOnlyForAFollowingTeamAndProcessesOfLowerPriority
   EXPECT_STREQ(barrier_spin_rounds(true, 0.45), "1000");   // less than half a CPU niced
   EXPECT_STREQ(barrier_spin_rounds(true, 0.5), "300000");  // a nice 19 loop on one of 2 CPUs
   EXPECT_STREQ(barrier_spin_rounds(false, 1.0), "1000");   // a fixed team: never long
+  EXPECT_TRUE(spins_long_for_niced(true, 0.5));
+  EXPECT_FALSE(spins_long_for_niced(true, 0.45));
+  EXPECT_FALSE(spins_long_for_niced(false, 1.0));
   const std::string said = describe_niced_spin(1.02, 2, barrier_spin_rounds(true, 1.02));
   EXPECT_NE(said.find("1.0 of 2 CPUs"), std::string::npos) << said;
   EXPECT_NE(said.find("GOMP_SPINCOUNT=300000"), std::string::npos) << said;
