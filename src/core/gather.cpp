@@ -72,7 +72,8 @@ void Simulation::gather_particles(IndexBlock b) {
                        external_forces_ ? components(p.external_force) : nullptr,
                        {g.x, g.y, g.z},
                        components(p.force),
-                       components(p.torque)};
+                       components(p.torque),
+                       gather_grouped_};
   particle_passes_.gather(in, b.first, b.end);
 }
 

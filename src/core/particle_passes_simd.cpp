@@ -13,6 +13,8 @@
 
 #include <immintrin.h>
 
+#include <cstdint>
+
 #ifndef GRAINLAB_SIMD_NS
 #error "GRAINLAB_SIMD_NS must name the instruction set's namespace"
 #endif
@@ -330,16 +332,47 @@ void half_kick(const ParticlePassInput& in, long first, long end, double& max_sp
   *next_speed2 = raise(*next_speed2, max_next2);
 }
 
+// Calls sum(i) for every particle of [first, end), in gather_group_block blocks, each block's
+// particles grouped by their row and column entry counts (a counting sort of the block: stable,
+// so index order within a group). The counts are read from the lists at each call: they change
+// with every selection of the active list, and the sort costs about 2 ns a particle.
+template <class Sum>
+GRAINLAB_PASS_INLINE void in_groups_of_entry_counts(const GatherInput& in, long first, long end,
+                                                    Sum sum) {
+  constexpr int block = gather_group_block;
+  constexpr uint32_t side = gather_group_max_count + 1;  // counts 0 .. max_count
+  constexpr int groups = static_cast<int>(side * side);
+  static_assert(block <= 256 && groups <= 256);  // (the 8-bit positions and group numbers)
+  for (long block_first = first; block_first < end; block_first += block) {
+    const int count = static_cast<int>(end - block_first < block ? end - block_first : block);
+    uint8_t group[block], order[block];
+    uint16_t group_start[groups + 1] = {};
+    for (int k = 0; k < count; ++k) {
+      const long i = block_first + k;
+      const uint32_t row = in.row_start[i + 1] - in.row_start[i];
+      const uint32_t column = in.col_start[i + 1] - in.col_start[i];
+      group[k] = static_cast<uint8_t>((row < side ? row : side - 1) * side +
+                                      (column < side ? column : side - 1));
+      ++group_start[group[k] + 1];
+    }
+    for (int g = 0; g < groups; ++g) group_start[g + 1] += group_start[g];
+    for (int k = 0; k < count; ++k) order[group_start[group[k]]++] = static_cast<uint8_t>(k);
+    for (int k = 0; k < count; ++k) sum(block_first + order[k]);
+  }
+}
+
 void gather(const GatherInput& in, long first, long end) {
-#if defined(__AVX512F__)
-  const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
   // (a local copy: the compiler cannot tell that the force and torque stores leave `in` as it
   // is, and would load its pointers again for every particle)
   const GatherInput local = in;
-  for (long i = first; i < end; ++i) gather_particle_lanes(local, i, gravity);
+#if defined(__AVX512F__)
+  const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
+  const auto sum = [&](long i) { gather_particle_lanes(local, i, gravity); };
 #else
-  for (long i = first; i < end; ++i) gather_particle(in, i);
+  const auto sum = [&](long i) { gather_particle(local, i); };
 #endif
+  if (local.grouped) return in_groups_of_entry_counts(local, first, end, sum);
+  for (long i = first; i < end; ++i) sum(i);
 }
 
 }  // namespace grainlab::GRAINLAB_SIMD_NS

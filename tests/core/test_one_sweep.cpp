@@ -60,10 +60,12 @@ Simulation make_packing() {
   return Simulation(std::move(p), walls, two_material_table(0.6, 0.3), settings);
 }
 
-SweepRun run(Simulation::OneSweep choice, int threads, long steps, bool timed = false) {
+SweepRun run(Simulation::OneSweep choice, int threads, long steps, bool timed = false,
+             Simulation::GatherGrouping grouping = Simulation::GatherGrouping::automatic) {
   omp_set_num_threads(threads);
   Simulation sim = make_packing();
   sim.set_one_sweep(choice);
+  sim.set_gather_grouping(grouping);
   sim.time_step_phases(timed);
   SweepRun r;
   r.kernel = sim.pair_kernel_name();
@@ -132,6 +134,20 @@ TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
     EXPECT_EQ(swept.rebuilds, stages.rebuilds);
     expect_identical(stages, swept);
   }
+}
+
+// The gather in groups of equal entry counts (core/particle_passes_simd.hpp, GatherInput::grouped)
+// against index order: the same bits in stages and in sweeps, on 1 and 2 threads.
+TEST(GatherGrouping, GivesTheBitsOfIndexOrderInStagesAndSweepsOnOneAndTwoThreads) {
+  using Grouping = Simulation::GatherGrouping;
+  const SweepRun in_order = run(Simulation::OneSweep::never, 1, steps, false, Grouping::never);
+  if (in_order.kernel == std::string("scalar")) GTEST_SKIP() << "the grouping is the kernel's";
+  for (const auto sweep : {Simulation::OneSweep::never, Simulation::OneSweep::always})
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads"
+                                      << (sweep == Simulation::OneSweep::always ? ", swept" : ""));
+      expect_identical(in_order, run(sweep, threads, steps, false, Grouping::always));
+    }
 }
 
 TEST(OneSweep, AutomaticWhereTheDriftsLeadFitsTheL3OnTwoThreadsWherePartnersLieBeyondTheL2) {

@@ -134,9 +134,12 @@ struct Contacts {
     const auto u = [&] { return random.uniform(); };
     const auto vec = [&](double scale) { return random.vec3(scale); };
     for (int i = 0; i < n; ++i) {
-      const int entries = i + 1 < n ? static_cast<int>(random() % 6) : 0;
+      // (every 29th row longer than the gather's groups count: gather_group_max_count)
+      const int entries = i + 1 < n ? (i % 29 == 5 ? 9 : static_cast<int>(random() % 6)) : 0;
       for (int k = 0; k < entries; ++k) {
-        partner.push_back(static_cast<uint32_t>(i + 1 + random() % std::min(40, n - 1 - i)));
+        const auto any_partner = static_cast<uint32_t>(i + 1 + random() % std::min(40, n - 1 - i));
+        // (and particle 70 second in more entries than that, where n > 70)
+        partner.push_back(i >= 60 && i < 70 && k == 0 && n > 70 ? 70u : any_partner);
         const bool touching = random() % 3 != 0;
         result.push_back(touching ? Result{vec(0.1), vec(0.05), 2e-6 * (1.0 + u()), 0.1}
                                   : Result{});
@@ -160,7 +163,8 @@ struct Contacts {
     std::vector<uint32_t> next(col_start.begin(), col_start.end() - 1);
     for (uint32_t e = 0; e < partner.size(); ++e) col_pair[next[partner[e]]++] = e;
   }
-  GatherInput input(bool external, std::vector<Vec3>& force, std::vector<Vec3>& torque) const {
+  GatherInput input(bool external, std::vector<Vec3>& force, std::vector<Vec3>& torque,
+                    bool grouped = false) const {
     return {row_start.data(),
             col_start.data(),
             col_pair.data(),
@@ -173,7 +177,8 @@ struct Contacts {
             external ? components(external_force) : nullptr,
             {gravity.x, gravity.y, gravity.z},
             components(force),
-            components(torque)};
+            components(torque),
+            grouped};
   }
 };
 static_assert(sizeof(Contacts::Result) == 8 * sizeof(double));
@@ -291,24 +296,37 @@ TEST(ParticlePasses, HalfKickGivesTheReferenceBitsAndSpeedsOnEveryInstructionSet
   }
 }
 
-TEST(ParticlePasses, GatherGivesTheReferenceSumsOnEveryInstructionSet) {
+// In index order and in groups of equal entry counts (GatherInput::grouped), over ranges that
+// span more than one of the groups' blocks (gather_group_block) and start and end within them.
+TEST(ParticlePasses, GatherGivesTheReferenceSumsOnEveryInstructionSetInEitherOrder) {
   constexpr int n = 157;
+  static_assert(n > 2 * gather_group_block);
   const Contacts contacts(n, 5);
   for (const Isa& isa : instruction_sets()) {
     if (!isa.supported) continue;
     for (const auto& [first, end] : ranges(n))
-      for (const bool external : {false, true}) {
-        SCOPED_TRACE(std::string(isa.name) + " particles " + std::to_string(first) + ".." +
-                     std::to_string(end) + (external ? " with" : " without") + " external forces");
-        // (what lies outside the range must stay as it was: start from a pattern)
-        std::vector<Vec3> want_force(n, Vec3{1.0, 2.0, 3.0}), want_torque(n, Vec3{4.0, 5.0, 6.0});
-        std::vector<Vec3> have_force = want_force, have_torque = want_torque;
-        reference_gather(contacts, external, first, end, want_force, want_torque);
-        isa.passes.gather(contacts.input(external, have_force, have_torque), first, end);
-        EXPECT_TRUE(same_bits(have_force, want_force));
-        EXPECT_TRUE(same_bits(have_torque, want_torque));
-      }
+      for (const bool external : {false, true})
+        for (const bool grouped : {false, true}) {
+          SCOPED_TRACE(std::string(isa.name) + " particles " + std::to_string(first) + ".." +
+                       std::to_string(end) + (external ? " with" : " without") +
+                       " external forces" + (grouped ? ", grouped" : ", in index order"));
+          // (what lies outside the range must stay as it was: start from a pattern)
+          std::vector<Vec3> want_force(n, Vec3{1.0, 2.0, 3.0}), want_torque(n, Vec3{4.0, 5.0, 6.0});
+          std::vector<Vec3> have_force = want_force, have_torque = want_torque;
+          reference_gather(contacts, external, first, end, want_force, want_torque);
+          isa.passes.gather(contacts.input(external, have_force, have_torque, grouped), first, end);
+          EXPECT_TRUE(same_bits(have_force, want_force));
+          EXPECT_TRUE(same_bits(have_torque, want_torque));
+        }
   }
+  // (the groups' counts are capped: some row and some column are longer than the cap)
+  long long_rows = 0, long_columns = 0;
+  for (int i = 0; i < n; ++i) {
+    long_rows += contacts.row_start[i + 1] - contacts.row_start[i] > gather_group_max_count;
+    long_columns += contacts.col_start[i + 1] - contacts.col_start[i] > gather_group_max_count;
+  }
+  EXPECT_GT(long_rows, 2);
+  EXPECT_GT(long_columns, 0);
   // (the sums are not trivial: some particle has entries on both sides and a wall)
   long both = 0;
   for (int i = 0; i < n; ++i)
