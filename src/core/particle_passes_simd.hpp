@@ -80,8 +80,8 @@ struct GatherInput {
   double gravity[3];             // m/s^2
   double* force;                 // out, per particle, Vec3
   double* torque;
-  // Whether the particles are taken in groups of equal entry counts (gather_groups below) rather
-  // than in index order; the sums are the same either way.
+  // Whether the particles are taken in groups of equal entry counts (gather_group_block below)
+  // rather than in index order; the sums are the same either way.
   bool grouped = false;
 };
 // With `grouped`, the gather takes the particles in blocks of gather_group_block, and within each
@@ -90,7 +90,8 @@ struct GatherInput {
 // group. A particle's two entry loops then end after the same number of rounds as the last
 // particle's did, which a branch predictor can foresee: in index order it cannot (0 to 8 entries,
 // at random), and each loop's end costs a mispredicted branch. On one thread that made the gather
-// about 1.4x and the step 1.13-1.18x faster (docs/performance.md sec. 39).
+// stage 1.25x and the step 1.08-1.18x faster on 11,636 beads in the VM's fast spells (1.00-1.10
+// in its slow ones; docs/performance.md sec. 39).
 constexpr int gather_group_block = 64;
 constexpr int gather_group_max_count = 7;
 // The sums of particles [first, end).

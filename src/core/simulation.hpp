@@ -153,12 +153,13 @@ class Simulation {
   void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
   static constexpr int shared_drift_team = 4;
   // Whether the gather takes each block of particles in groups of equal entry counts
-  // (core/particle_passes_simd.hpp, GatherInput::grouped): automatic on a team of
-  // grouped_gather_team thread, always, or never. On one thread the step ran 1.13-1.18x faster on
-  // 11,636 beads and 1.05x on 88,400; on two threads it was 0.92x on 11,636 beads (5,818 a thread;
-  // even with 11,636 a thread, 1.0-1.04x on 88,400), where the natural order's loop ends seem to
-  // be learnt by the branch predictor from step to step (docs/performance.md sec. 39). The
-  // results are the same. Not saved with the state.
+  // (core/particle_passes_simd.hpp, GatherInput::grouped): automatic on a team of one thread
+  // (grouped_gather_team), always, or never. On one thread the step ran 1.08-1.18x faster on
+  // 11,636 beads (1.00-1.10 in the VM's slow spells) and 0.98-1.08x on 88,400; on two threads
+  // 0.86-0.95x on 11,636 beads (5,818 a thread), about even with 11,636 a thread and on 88,400.
+  // There index order costs a particle half what it costs one thread, and grouping loses the
+  // row results' prefetched stream (docs/performance.md sec. 39). The results are the same. Not
+  // saved with the state.
   enum class GatherGrouping { automatic, always, never };
   void set_gather_grouping(GatherGrouping choice) { gather_grouping_ = choice; }
   static constexpr int grouped_gather_team = 1;
