@@ -371,7 +371,11 @@ void gather(const GatherInput& in, long first, long end) {
 #else
   const auto sum = [&](long i) { gather_particle(local, i); };
 #endif
-  if (local.grouped) return in_groups_of_entry_counts(local, first, end, sum);
+  // (a range shorter than a block, as in a packing of a few beads, in index order: its particles
+  // would fall into groups of one or two, and the sort's fixed cost, the 64 groups' starts, would
+  // remain)
+  if (local.grouped && end - first >= gather_group_block)
+    return in_groups_of_entry_counts(local, first, end, sum);
   for (long i = first; i < end; ++i) sum(i);
 }
 

@@ -84,7 +84,8 @@ struct GatherInput {
   // rather than in index order; the sums are the same either way.
   bool grouped = false;
 };
-// With `grouped`, the gather takes the particles in blocks of gather_group_block, and within each
+// With `grouped`, the gather takes the particles of a range of at least gather_group_block (a
+// shorter one in index order) in blocks of gather_group_block, and within each
 // block those with the same number of row entries and the same number of column entries (up to
 // gather_group_max_count; more count as that many) one after the other, in index order within a
 // group. A particle's two entry loops then end after the same number of rounds as the last
