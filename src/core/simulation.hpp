@@ -157,9 +157,9 @@ class Simulation {
   // (grouped_gather_team), always, or never. On one thread the step ran 1.08-1.18x faster on
   // 11,636 beads (1.00-1.10 in the VM's slow spells) and 0.98-1.08x on 88,400; on two threads
   // 0.86-0.95x on 11,636 beads (5,818 a thread), about even with 11,636 a thread and on 88,400.
-  // There index order costs a particle half what it costs one thread, and grouping loses the
-  // row results' prefetched stream (docs/performance.md sec. 39). The results are the same. Not
-  // saved with the state.
+  // There index order costs a particle half what it costs one thread; why grouping loses there
+  // is not settled: a variant that kept the row results' prefetched stream lost as much
+  // (docs/performance.md sec. 39). The results are the same. Not saved with the state.
   enum class GatherGrouping { automatic, always, never };
   void set_gather_grouping(GatherGrouping choice) { gather_grouping_ = choice; }
   static constexpr int grouped_gather_team = 1;
