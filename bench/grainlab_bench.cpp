@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
   bool allow_1m = false, no_csv = false, rebuild_peak = false, phase_times = false;
   int refresh_cost = 0, rebuild_cost = 0;
   std::string one_sweep = "automatic", chunk_tail = "even", drift_sharing = "automatic",
-              gather_grouping = "automatic";
+              gather_walk = "automatic";
   long chunks_per_thread = 0;  // 0: automatic (Simulation::chunk_sharing)
   std::string owner_keeps_last = "automatic";
   app.add_option("workload", workload, "dense-11k | dense-88k | settle-1M");
@@ -193,11 +193,12 @@ int main(int argc, char** argv) {
                  "(automatic: on 4 threads or more; Simulation::set_drift_sharing, the same "
                  "results)")
       ->check(CLI::IsMember({"automatic", "always", "never"}));
-  app.add_option("--gather-grouping", gather_grouping,
-                 "automatic | always | never: the gather takes the particles of each block in "
-                 "groups of equal entry counts (automatic: on one thread; "
-                 "Simulation::set_gather_grouping, the same results)")
-      ->check(CLI::IsMember({"automatic", "always", "never"}));
+  app.add_option(
+         "--gather-walk", gather_walk,
+         "automatic | flat | one-by-one: the gather walks each block's entries flat or takes "
+         "the particles one by one (automatic: flat from 10,000 particles a thread; "
+         "Simulation::set_gather_walk, the same results)")
+      ->check(CLI::IsMember({"automatic", "flat", "one-by-one"}));
   app.add_option("--chunks-per-thread", chunks_per_thread,
                  "about this many chunks of each thread's block in the stages of a step "
                  "(default automatic: 8 below 8 threads, 16 from 8; Simulation::set_chunk_sharing, "
@@ -208,15 +209,16 @@ int main(int argc, char** argv) {
                  "(automatic: yes below 8 threads; the same results)")
       ->check(CLI::IsMember({"automatic", "yes", "no"}));
   CLI11_PARSE(app, argc, argv);
-  // (--one-sweep, --drift-sharing and --gather-grouping: automatic | always | never, the
-  // choices' enumerators)
+  // (--one-sweep and --drift-sharing: automatic | always | never, the choices' enumerators)
   const auto choice = []<class Choice>(const std::string& word, Choice) {
     return word == "always" ? Choice::always : word == "never" ? Choice::never : Choice::automatic;
   };
   const Simulation::OneSweep sweep_choice = choice(one_sweep, Simulation::OneSweep{});
   const Simulation::DriftSharing drift_choice = choice(drift_sharing, Simulation::DriftSharing{});
-  const Simulation::GatherGrouping grouping_choice =
-      choice(gather_grouping, Simulation::GatherGrouping{});
+  const Simulation::GatherWalk walk_choice = gather_walk == "flat" ? Simulation::GatherWalk::flat
+                                             : gather_walk == "one-by-one"
+                                                 ? Simulation::GatherWalk::one_by_one
+                                                 : Simulation::GatherWalk::automatic;
 
   Packing packing;
   try {
@@ -278,7 +280,7 @@ int main(int argc, char** argv) {
         sim.set_chunk_sharing(sharing);
       }
       sim.set_drift_sharing(drift_choice);
-      sim.set_gather_grouping(grouping_choice);
+      sim.set_gather_walk(walk_choice);
       sim.set_chunk_tail(chunk_tail == "shrinking" ? grainlab::ChunkQueue::Tail::shrinking
                                                    : grainlab::ChunkQueue::Tail::even);
       sim.advance(warmup);

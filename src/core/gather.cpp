@@ -60,20 +60,25 @@ void Simulation::gather_particles(IndexBlock b) {
   const WallContacts& wc = wall_contacts_;
   const Vec3& g = settings_.gravity;
   static_assert(sizeof(PairResult) == 8 * sizeof(double));
-  const GatherInput in{c.row_start.data(),
-                       c.col_start.data(),
-                       c.col_pair.data(),
-                       reinterpret_cast<const double*>(c.result.data()),
-                       wc.row_start.data(),
-                       components(wc.force_on_particle),
-                       components(wc.torque_on_particle),
-                       p.radius.data(),
-                       p.inverse_mass.data(),
-                       external_forces_ ? components(p.external_force) : nullptr,
-                       {g.x, g.y, g.z},
-                       components(p.force),
-                       components(p.torque),
-                       gather_grouped_};
+  GatherInput in{c.row_start.data(),
+                 c.col_start.data(),
+                 c.col_pair.data(),
+                 reinterpret_cast<const double*>(c.result.data()),
+                 wc.row_start.data(),
+                 components(wc.force_on_particle),
+                 components(wc.torque_on_particle),
+                 p.radius.data(),
+                 p.inverse_mass.data(),
+                 external_forces_ ? components(p.external_force) : nullptr,
+                 {g.x, g.y, g.z},
+                 components(p.force),
+                 components(p.torque)};
+  // (the owners are the kernel's: index_entry_owners)
+  if (flat_gather_ && entry_owners_.size() == c.size() && wall_entry_owners_.size() == wc.size()) {
+    in.row_owner = entry_owners_.data();
+    in.partner = c.partner.data();
+    in.wall_owner = wall_entry_owners_.data();
+  }
   particle_passes_.gather(in, b.first, b.end);
 }
 

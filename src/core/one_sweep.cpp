@@ -119,7 +119,7 @@ void Simulation::sweep_step() {
   prepare_pair_forces();
   prepare_wall_lanes();
   const int team = step_team(n);
-  gather_grouped_ = groups_gather(team);
+  flat_gather_ = walks_gather_flat(n, team);
   partition_.plan(n, team);
   // The blocks' tails (the last 1 / tail_share of each), shared in stages 1, 3 and 4.
   const auto tail_of = [&](const IndexBlock& b) {

@@ -308,6 +308,66 @@ GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v
       reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24), torque_lanes,
       reinterpret_cast<__m512d>(t));
 }
+
+// The sums of the particles [first, end), at most gather_flat_block of them, each the arithmetic
+// of gather_particle_lanes in the same order, the entries walked flat (GatherInput::row_owner):
+// the block's row entries in entry order, then its column entries in column order, then its
+// wall entries, each added to its particle's sum (force in lanes 0..2, torque in 3..5), then the
+// external forces. A particle's entries are contiguous in each walk and in the order its own
+// loops take them. An entry adds x * (1, 1, 1, lever, lever, lever) in its row and
+// (-x) * (..) in its column: f + 1 x is f + x, and f + (-x) is f - x, exactly.
+GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long end, v8 gravity) {
+  alignas(64) v8 sum[gather_flat_block];
+  const long count = end - first;
+  for (long k = 0; k < count; ++k) {
+    const double inverse_mass = in.inverse_mass[first + k];
+    sum[k] = inverse_mass > 0.0 ? splat(1.0 / inverse_mass) * gravity : v8{};
+  }
+  constexpr __mmask8 torque_lanes = 0x38;
+  const double* const result = in.result;
+  const double* const radius = in.radius;
+  for (uint32_t e = in.row_start[first], row_end = in.row_start[end]; e < row_end; ++e) {
+    const long k = in.row_owner[e] - first;
+    const double* x = result + 8 * size_t{e};
+    const __m512d v = _mm512_loadu_pd(x);
+    // (x in lanes 0..2, the lever times x in lanes 3..5)
+    const __m512d c =
+        _mm512_mask_mul_pd(v, torque_lanes, v, _mm512_set1_pd(radius[first + k] - 0.5 * x[6]));
+    sum[k] = sum[k] + reinterpret_cast<v8>(c);
+  }
+  for (uint32_t q = in.col_start[first], col_end = in.col_start[end]; q < col_end; ++q) {
+    const uint32_t e = in.col_pair[q];
+    const long k = in.partner[e] - first;
+    const double* x = result + 8 * size_t{e};
+    const __m512d v = _mm512_loadu_pd(x);
+    // (-x in lanes 0..2, as f + (-x) is f - x exactly; the lever times x in lanes 3..5)
+    const __m512d c =
+        _mm512_mask_mul_pd(reinterpret_cast<__m512d>(-reinterpret_cast<v8>(v)), torque_lanes, v,
+                           _mm512_set1_pd(radius[first + k] - 0.5 * x[6]));
+    sum[k] = sum[k] + reinterpret_cast<v8>(c);
+  }
+  for (uint32_t e = in.wall_row_start[first], wall_end = in.wall_row_start[end]; e < wall_end;
+       ++e) {
+    const long k = in.wall_owner[e] - first;
+    const __m512d f = _mm512_maskz_loadu_pd(0x07, in.force_on_particle + 3 * size_t{e});
+    // (the torque into lanes 3..5 from 3 doubles before it: the lanes masked off are not read)
+    const __m512d t = _mm512_mask_loadu_pd(
+        f, torque_lanes,
+        reinterpret_cast<const double*>(
+            reinterpret_cast<uintptr_t>(in.torque_on_particle + 3 * size_t{e}) - 24));
+    sum[k] = sum[k] + reinterpret_cast<v8>(t);
+  }
+  for (long k = 0; k < count; ++k) {
+    const long i = first + k;
+    v8 s = sum[k];
+    if (in.external_force)
+      s = s + reinterpret_cast<v8>(_mm512_maskz_loadu_pd(0x07, in.external_force + 3 * i));
+    _mm512_mask_storeu_pd(in.force + 3 * i, 0x07, reinterpret_cast<__m512d>(s));
+    _mm512_mask_storeu_pd(
+        reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24),
+        torque_lanes, reinterpret_cast<__m512d>(s));
+  }
+}
 #endif
 
 }  // namespace
@@ -332,51 +392,24 @@ void half_kick(const ParticlePassInput& in, long first, long end, double& max_sp
   *next_speed2 = raise(*next_speed2, max_next2);
 }
 
-// Calls sum(i) for every particle of [first, end), in gather_group_block blocks, each block's
-// particles grouped by their row and column entry counts (a counting sort of the block: stable,
-// so index order within a group). The counts are read from the lists at each call: they change
-// with every selection of the active list, and the sort costs about 2 ns a particle.
-template <class Sum>
-GRAINLAB_PASS_INLINE void in_groups_of_entry_counts(const GatherInput& in, long first, long end,
-                                                    Sum sum) {
-  constexpr int block = gather_group_block;
-  constexpr uint32_t side = gather_group_max_count + 1;  // counts 0 .. max_count
-  constexpr int groups = static_cast<int>(side * side);
-  static_assert(block <= 256 && groups <= 256);  // (the 8-bit positions and group numbers)
-  for (long block_first = first; block_first < end; block_first += block) {
-    const int count = static_cast<int>(end - block_first < block ? end - block_first : block);
-    uint8_t group[block], order[block];
-    uint16_t group_start[groups + 1] = {};
-    for (int k = 0; k < count; ++k) {
-      const long i = block_first + k;
-      const uint32_t row = in.row_start[i + 1] - in.row_start[i];
-      const uint32_t column = in.col_start[i + 1] - in.col_start[i];
-      group[k] = static_cast<uint8_t>((row < side ? row : side - 1) * side +
-                                      (column < side ? column : side - 1));
-      ++group_start[group[k] + 1];
-    }
-    for (int g = 0; g < groups; ++g) group_start[g + 1] += group_start[g];
-    for (int k = 0; k < count; ++k) order[group_start[group[k]]++] = static_cast<uint8_t>(k);
-    for (int k = 0; k < count; ++k) sum(block_first + order[k]);
-  }
-}
-
 void gather(const GatherInput& in, long first, long end) {
   // (a local copy: the compiler cannot tell that the force and torque stores leave `in` as it
   // is, and would load its pointers again for every particle)
   const GatherInput local = in;
 #if defined(__AVX512F__)
   const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
-  const auto sum = [&](long i) { gather_particle_lanes(local, i, gravity); };
+  if (local.row_owner && local.partner && local.wall_owner) {
+    for (long block_first = first; block_first < end; block_first += gather_flat_block) {
+      const long block_end =
+          end - block_first > gather_flat_block ? block_first + gather_flat_block : end;
+      gather_flat(local, block_first, block_end, gravity);
+    }
+    return;
+  }
+  for (long i = first; i < end; ++i) gather_particle_lanes(local, i, gravity);
 #else
-  const auto sum = [&](long i) { gather_particle(local, i); };
+  for (long i = first; i < end; ++i) gather_particle(local, i);
 #endif
-  // (a range shorter than a block, as in a packing of a few beads, in index order: its particles
-  // would fall into groups of one or two, and the sort's fixed cost, the 64 groups' starts, would
-  // remain)
-  if (local.grouped && end - first >= gather_group_block)
-    return in_groups_of_entry_counts(local, first, end, sum);
-  for (long i = first; i < end; ++i) sum(i);
 }
 
 }  // namespace grainlab::GRAINLAB_SIMD_NS

@@ -80,21 +80,24 @@ struct GatherInput {
   double gravity[3];             // m/s^2
   double* force;                 // out, per particle, Vec3
   double* torque;
-  // Whether the particles are taken in groups of equal entry counts (gather_group_block below)
-  // rather than in index order; the sums are the same either way.
-  bool grouped = false;
+  // Each pair entry's first particle (its row's) and second (its partner), and each wall
+  // entry's particle; null (the default): the gather takes the particles one by one. With all
+  // three, the AVX-512 gather walks each block of gather_flat_block particles' entries flat
+  // instead (the SSE2 and AVX2 objects ignore them); the sums are the same either way.
+  const uint32_t* row_owner = nullptr;
+  const uint32_t* partner = nullptr;
+  const uint32_t* wall_owner = nullptr;
 };
-// With `grouped`, the gather takes the particles of a range of at least gather_group_block (a
-// shorter one in index order) in blocks of gather_group_block, and within each
-// block those with the same number of row entries and the same number of column entries (up to
-// gather_group_max_count; more count as that many) one after the other, in index order within a
-// group. A particle's two entry loops then end after the same number of rounds as the last
-// particle's did, which a branch predictor can foresee: in index order it cannot (0 to 8 entries,
-// at random), and each loop's end costs a mispredicted branch. On one thread that made the gather
-// stage 1.25x and the step 1.08-1.18x faster on 11,636 beads in the VM's fast spells (1.00-1.10
-// in its slow ones; docs/performance.md sec. 39).
-constexpr int gather_group_block = 64;
-constexpr int gather_group_max_count = 7;
+// The flat walk: within a block of particles, first all their row entries in entry order,
+// then all their column entries in column order, then all their wall entries, each added to
+// its particle's running sum, so that no loop ends where a particle's entries end. One particle
+// at a time, each of its row and column loops ends after 0 to 8 rounds, at random from one
+// particle to the next. The sequence is the same in every step between selections of the list;
+// on the development VM's Zen 5 the gather one particle at a time cost 8.4 ns a particle with
+// 5,818 particles a thread and 20 ns with 11,636, which we read as the branch predictor
+// remembering where the loops end for the first and not for the second; the flat walk cost 14.5
+// ns with 11,636 (docs/performance.md sec. 40).
+constexpr long gather_flat_block = 128;
 // The sums of particles [first, end).
 using SimdGather = void (*)(const GatherInput& in, long first, long end);
 

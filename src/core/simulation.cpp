@@ -264,7 +264,7 @@ void Simulation::compute_forces(double drift, bool close_step, bool records_writ
   const ChunkSharing sharing = chunk_sharing(team);
   const long chunk = stage_chunk(n, team, sharing.chunks_per_thread);
   const bool records = uses_pair_kernel() && !records_written;
-  gather_grouped_ = groups_gather(team);
+  flat_gather_ = walks_gather_flat(n, team);
   partition_.plan(n, team);  // (the drift's blocks, unless this is a fresh state)
   if (records) record_chunks_.plan(partition_, chunk, chunk_tail_, sharing.owner_keeps_last);
   contact_chunks_.plan(partition_, chunk, chunk_tail_, sharing.owner_keeps_last);

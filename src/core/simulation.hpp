@@ -152,17 +152,19 @@ class Simulation {
   enum class DriftSharing { automatic, always, never };
   void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
   static constexpr int shared_drift_team = 4;
-  // Whether the gather takes each block of particles in groups of equal entry counts
-  // (core/particle_passes_simd.hpp, GatherInput::grouped): automatic on a team of one thread
-  // (grouped_gather_team), always, or never. On one thread the step ran 1.08-1.18x faster on
-  // 11,636 beads (1.00-1.10 in the VM's slow spells) and 0.98-1.08x on 88,400; on two threads
-  // 0.86-0.95x on 11,636 beads (5,818 a thread), about even with 11,636 a thread and on 88,400.
-  // There index order costs a particle half what it costs one thread; why grouping loses there
-  // is not settled: a variant that kept the row results' prefetched stream lost as much
-  // (docs/performance.md sec. 39). The results are the same. Not saved with the state.
-  enum class GatherGrouping { automatic, always, never };
-  void set_gather_grouping(GatherGrouping choice) { gather_grouping_ = choice; }
-  static constexpr int grouped_gather_team = 1;
+  // Whether the gather walks each block of particles' entries flat (core/particle_passes_simd.hpp,
+  // GatherInput::row_owner) or takes the particles one by one: automatic (flat where a thread of
+  // the step's team has at least flat_gather_share particles), flat, or one by one. On the
+  // development VM's Zen 5, one by one was the faster with 5,818 particles a thread (the branch
+  // predictor remembers where each particle's entries end) and the flat walk with 11,636 or more
+  // (docs/performance.md sec. 40). The flat walk needs the kernel's entry owners; without them the
+  // gather goes one by one. The results are the same. Not saved with the state.
+  enum class GatherWalk { automatic, flat, one_by_one };
+  void set_gather_walk(GatherWalk choice) { gather_walk_ = choice; }
+  static constexpr long flat_gather_share = 10000;
+  static constexpr bool walks_gather_flat_automatically(long n, int team) {
+    return n >= flat_gather_share * team;
+  }
   // How the stages in a step's regions share their chunks (core/chunk_queue.hpp): about
   // `chunks_per_thread` chunks of each block (at most 1,024 particles each), and whether a block's
   // last untaken chunk stays with its owner. Automatic (the default): 8 chunks and the owner keeps
@@ -328,11 +330,11 @@ class Simulation {
   DriftSharing drift_sharing_ = DriftSharing::automatic;
   std::optional<ChunkSharing> chunk_sharing_;  // (set_chunk_sharing; nullopt: automatic)
   long shared_drift_steps_ = 0;
-  GatherGrouping gather_grouping_ = GatherGrouping::automatic;
-  bool gather_grouped_ = false;  // for this step's gather (groups_gather of its team)
-  bool groups_gather(int team) const {
-    return gather_grouping_ == GatherGrouping::always ||
-           (gather_grouping_ == GatherGrouping::automatic && team <= grouped_gather_team);
+  GatherWalk gather_walk_ = GatherWalk::automatic;
+  bool flat_gather_ = false;  // for this step's gather (walks_gather_flat of its team)
+  bool walks_gather_flat(long n, int team) const {
+    return gather_walk_ == GatherWalk::flat ||
+           (gather_walk_ == GatherWalk::automatic && walks_gather_flat_automatically(n, team));
   }
   bool shares_drift(int team) const {
     return team > 1 && (drift_sharing_ == DriftSharing::always ||

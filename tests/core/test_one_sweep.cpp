@@ -61,11 +61,11 @@ Simulation make_packing() {
 }
 
 SweepRun run(Simulation::OneSweep choice, int threads, long steps, bool timed = false,
-             Simulation::GatherGrouping grouping = Simulation::GatherGrouping::automatic) {
+             Simulation::GatherWalk walk = Simulation::GatherWalk::automatic) {
   omp_set_num_threads(threads);
   Simulation sim = make_packing();
   sim.set_one_sweep(choice);
-  sim.set_gather_grouping(grouping);
+  sim.set_gather_walk(walk);
   sim.time_step_phases(timed);
   SweepRun r;
   r.kernel = sim.pair_kernel_name();
@@ -136,18 +136,30 @@ TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
   }
 }
 
-// The gather in groups of equal entry counts (core/particle_passes_simd.hpp, GatherInput::grouped)
-// against index order: the same bits in stages and in sweeps, on 1 and 2 threads.
-TEST(GatherGrouping, GivesTheBitsOfIndexOrderInStagesAndSweepsOnOneAndTwoThreads) {
-  using Grouping = Simulation::GatherGrouping;
-  const SweepRun in_order = run(Simulation::OneSweep::never, 1, steps, false, Grouping::never);
-  if (in_order.kernel == std::string("scalar")) GTEST_SKIP() << "the grouping is the kernel's";
+// The gather's flat walk (core/particle_passes_simd.hpp, GatherInput::row_owner) against the
+// particles one by one: the same bits in stages and in sweeps, on 1 and 2 threads (the packing's
+// 1,728 beads are 14 of the walk's blocks, with walls, a lid and selections of the list).
+TEST(GatherWalk, FlatGivesTheBitsOfOneByOneInStagesAndSweepsOnOneAndTwoThreads) {
+  using Walk = Simulation::GatherWalk;
+  const SweepRun one_by_one = run(Simulation::OneSweep::never, 1, steps, false, Walk::one_by_one);
+  if (one_by_one.kernel == std::string("scalar")) GTEST_SKIP() << "the owners are the kernel's";
   for (const auto sweep : {Simulation::OneSweep::never, Simulation::OneSweep::always})
     for (int threads : {1, 2}) {
       SCOPED_TRACE(testing::Message() << threads << " threads"
                                       << (sweep == Simulation::OneSweep::always ? ", swept" : ""));
-      expect_identical(in_order, run(sweep, threads, steps, false, Grouping::always));
+      expect_identical(one_by_one, run(sweep, threads, steps, false, Walk::flat));
     }
+}
+
+// Automatic: flat where each thread of the team has flat_gather_share particles or more.
+TEST(GatherWalk, AutomaticIsFlatFromTenThousandParticlesAThread) {
+  EXPECT_EQ(Simulation::flat_gather_share, 10000);
+  EXPECT_TRUE(Simulation::walks_gather_flat_automatically(11636, 1));   // dense-11k, 1 thread
+  EXPECT_FALSE(Simulation::walks_gather_flat_automatically(11636, 2));  // 5,818 a thread
+  EXPECT_TRUE(Simulation::walks_gather_flat_automatically(88400, 2));   // the plane strain test
+  EXPECT_FALSE(Simulation::walks_gather_flat_automatically(88400, 16));
+  EXPECT_TRUE(Simulation::walks_gather_flat_automatically(160000, 16));
+  EXPECT_FALSE(Simulation::walks_gather_flat_automatically(1728, 1));
 }
 
 TEST(OneSweep, AutomaticWhereTheDriftsLeadFitsTheL3OnTwoThreadsWherePartnersLieBeyondTheL2) {

@@ -124,22 +124,24 @@ struct Contacts {
     double overlap = 0.0, normal_force = 0.0;
   };
   std::vector<uint32_t> row_start{0}, partner, col_start, col_pair, wall_row_start{0};
+  std::vector<uint32_t> row_owner, wall_owner;  // (for the flat walk)
   std::vector<Result> result;
   std::vector<Vec3> wall_force, wall_torque, external_force;
   std::vector<double> radius, inverse_mass;
-  Vec3 gravity{0.3, -0.2, -9.81};
+  Vec3 gravity{-0.0, -0.2, -9.81};  // (a negative zero: a zero's sign in a sum counts)
 
   explicit Contacts(int n, unsigned seed) {
     Random random(seed);
     const auto u = [&] { return random.uniform(); };
     const auto vec = [&](double scale) { return random.vec3(scale); };
     for (int i = 0; i < n; ++i) {
-      // (every 29th row longer than the gather's groups count: gather_group_max_count)
+      // (every 29th row longer than a row of the packings: 9 entries)
       const int entries = i + 1 < n ? (i % 29 == 5 ? 9 : static_cast<int>(random() % 6)) : 0;
       for (int k = 0; k < entries; ++k) {
         const auto any_partner = static_cast<uint32_t>(i + 1 + random() % std::min(40, n - 1 - i));
         // (and particle 70 second in more entries than that, where n > 70)
         partner.push_back(i >= 60 && i < 70 && k == 0 && n > 70 ? 70u : any_partner);
+        row_owner.push_back(static_cast<uint32_t>(i));
         const bool touching = random() % 3 != 0;
         result.push_back(touching ? Result{vec(0.1), vec(0.05), 2e-6 * (1.0 + u()), 0.1}
                                   : Result{});
@@ -148,6 +150,7 @@ struct Contacts {
       for (int k = 0, walls = random() % 5 == 0 ? 1 + static_cast<int>(random() % 2) : 0; k < walls;
            ++k) {
         wall_force.push_back(vec(0.2));
+        wall_owner.push_back(static_cast<uint32_t>(i));
         wall_torque.push_back(vec(1e-4));
       }
       wall_row_start.push_back(static_cast<uint32_t>(wall_force.size()));
@@ -164,21 +167,26 @@ struct Contacts {
     for (uint32_t e = 0; e < partner.size(); ++e) col_pair[next[partner[e]]++] = e;
   }
   GatherInput input(bool external, std::vector<Vec3>& force, std::vector<Vec3>& torque,
-                    bool grouped = false) const {
-    return {row_start.data(),
-            col_start.data(),
-            col_pair.data(),
-            &result[0].force_on_first.x,
-            wall_row_start.data(),
-            components(wall_force),
-            components(wall_torque),
-            radius.data(),
-            inverse_mass.data(),
-            external ? components(external_force) : nullptr,
-            {gravity.x, gravity.y, gravity.z},
-            components(force),
-            components(torque),
-            grouped};
+                    bool flat = false) const {
+    GatherInput in{row_start.data(),
+                   col_start.data(),
+                   col_pair.data(),
+                   &result[0].force_on_first.x,
+                   wall_row_start.data(),
+                   components(wall_force),
+                   components(wall_torque),
+                   radius.data(),
+                   inverse_mass.data(),
+                   external ? components(external_force) : nullptr,
+                   {gravity.x, gravity.y, gravity.z},
+                   components(force),
+                   components(torque)};
+    if (flat) {
+      in.row_owner = row_owner.data();
+      in.partner = partner.data();
+      in.wall_owner = wall_owner.data();
+    }
+    return in;
   }
 };
 static_assert(sizeof(Contacts::Result) == 8 * sizeof(double));
@@ -296,34 +304,34 @@ TEST(ParticlePasses, HalfKickGivesTheReferenceBitsAndSpeedsOnEveryInstructionSet
   }
 }
 
-// In index order and in groups of equal entry counts (GatherInput::grouped), over ranges that
-// span more than one of the groups' blocks (gather_group_block) and start and end within them.
-TEST(ParticlePasses, GatherGivesTheReferenceSumsOnEveryInstructionSetInEitherOrder) {
+// One by one and walked flat (GatherInput::row_owner), over ranges that span more than one of
+// the flat walk's blocks (gather_flat_block) and start and end within them.
+TEST(ParticlePasses, GatherGivesTheReferenceSumsOnEveryInstructionSetOneByOneOrFlat) {
   constexpr int n = 157;
-  static_assert(n > 2 * gather_group_block);
+  static_assert(n > gather_flat_block);
   const Contacts contacts(n, 5);
   for (const Isa& isa : instruction_sets()) {
     if (!isa.supported) continue;
     for (const auto& [first, end] : ranges(n))
       for (const bool external : {false, true})
-        for (const bool grouped : {false, true}) {
+        for (const bool flat : {false, true}) {
           SCOPED_TRACE(std::string(isa.name) + " particles " + std::to_string(first) + ".." +
                        std::to_string(end) + (external ? " with" : " without") +
-                       " external forces" + (grouped ? ", grouped" : ", in index order"));
+                       " external forces" + (flat ? ", flat" : ", one by one"));
           // (what lies outside the range must stay as it was: start from a pattern)
           std::vector<Vec3> want_force(n, Vec3{1.0, 2.0, 3.0}), want_torque(n, Vec3{4.0, 5.0, 6.0});
           std::vector<Vec3> have_force = want_force, have_torque = want_torque;
           reference_gather(contacts, external, first, end, want_force, want_torque);
-          isa.passes.gather(contacts.input(external, have_force, have_torque, grouped), first, end);
+          isa.passes.gather(contacts.input(external, have_force, have_torque, flat), first, end);
           EXPECT_TRUE(same_bits(have_force, want_force));
           EXPECT_TRUE(same_bits(have_torque, want_torque));
         }
   }
-  // (the groups' counts are capped: some row and some column are longer than the cap)
+  // (rows and columns of many lengths, the longest past 8)
   long long_rows = 0, long_columns = 0;
   for (int i = 0; i < n; ++i) {
-    long_rows += contacts.row_start[i + 1] - contacts.row_start[i] > gather_group_max_count;
-    long_columns += contacts.col_start[i + 1] - contacts.col_start[i] > gather_group_max_count;
+    long_rows += contacts.row_start[i + 1] - contacts.row_start[i] > 8;
+    long_columns += contacts.col_start[i + 1] - contacts.col_start[i] > 8;
   }
   EXPECT_GT(long_rows, 2);
   EXPECT_GT(long_columns, 0);
