@@ -137,8 +137,9 @@ TEST(OneSweep, GivesTheBitsOfTheStagesOnOneTwoAndThreeThreads) {
 }
 
 // The gather's flat walk (core/particle_passes_simd.hpp, GatherInput::row_owner) against the
-// particles one by one: the same bits in stages and in sweeps, on 1 and 2 threads (the packing's
-// 1,728 beads are 14 of the walk's blocks, with walls, a lid and selections of the list).
+// particles one by one: the same bits in stages and in sweeps, on 1 and 2 threads (1,728 beads,
+// more than a block of the walk, with walls, a lid with an external force and selections of the
+// list; on a machine without AVX-512 both take the particles one by one).
 TEST(GatherWalk, FlatGivesTheBitsOfOneByOneInStagesAndSweepsOnOneAndTwoThreads) {
   using Walk = Simulation::GatherWalk;
   const SweepRun one_by_one = run(Simulation::OneSweep::never, 1, steps, false, Walk::one_by_one);
