@@ -398,7 +398,7 @@ void gather(const GatherInput& in, long first, long end) {
   const GatherInput local = in;
 #if defined(__AVX512F__)
   const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
-  if (local.row_owner && local.partner && local.wall_owner) {
+  if (local.row_owner && local.partner) {
     for (long block_first = first; block_first < end; block_first += gather_flat_block) {
       const long block_end =
           end - block_first > gather_flat_block ? block_first + gather_flat_block : end;

@@ -130,7 +130,7 @@ struct Contacts {
   std::vector<double> radius, inverse_mass;
   Vec3 gravity{-0.0, -0.2, -9.81};  // (a negative zero: a zero's sign in a sum counts)
 
-  explicit Contacts(int n, unsigned seed) {
+  explicit Contacts(int n, unsigned seed, bool with_walls = true) {
     Random random(seed);
     const auto u = [&] { return random.uniform(); };
     const auto vec = [&](double scale) { return random.vec3(scale); };
@@ -147,8 +147,8 @@ struct Contacts {
                                   : Result{});
       }
       row_start.push_back(static_cast<uint32_t>(partner.size()));
-      for (int k = 0, walls = random() % 5 == 0 ? 1 + static_cast<int>(random() % 2) : 0; k < walls;
-           ++k) {
+      const bool walled = random() % 5 == 0 && with_walls;
+      for (int k = 0, walls = walled ? 1 + static_cast<int>(random() % 2) : 0; k < walls; ++k) {
         wall_force.push_back(vec(0.2));
         wall_owner.push_back(static_cast<uint32_t>(i));
         wall_torque.push_back(vec(1e-4));
@@ -326,6 +326,21 @@ TEST(ParticlePasses, GatherGivesTheReferenceSumsOnEveryInstructionSetOneByOneOrF
           EXPECT_TRUE(same_bits(have_force, want_force));
           EXPECT_TRUE(same_bits(have_torque, want_torque));
         }
+  }
+  // Without wall entries the walk needs no wall owners (null), on every instruction set.
+  const Contacts no_walls(n, 7, false);
+  ASSERT_EQ(no_walls.wall_row_start.back(), 0u);
+  for (const Isa& isa : instruction_sets()) {
+    if (!isa.supported) continue;
+    SCOPED_TRACE(std::string(isa.name) + ", no walls, flat");
+    std::vector<Vec3> want_force(n), want_torque(n);
+    std::vector<Vec3> have_force = want_force, have_torque = want_torque;
+    reference_gather(no_walls, true, 0, n, want_force, want_torque);
+    GatherInput in = no_walls.input(true, have_force, have_torque, true);
+    in.wall_owner = nullptr;
+    isa.passes.gather(in, 0, n);
+    EXPECT_TRUE(same_bits(have_force, want_force));
+    EXPECT_TRUE(same_bits(have_torque, want_torque));
   }
   // (rows and columns of many lengths, the longest past 8)
   long long_rows = 0, long_columns = 0;
