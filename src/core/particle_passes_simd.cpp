@@ -271,11 +271,31 @@ GRAINLAB_PASS_INLINE void gather_particle(const GatherInput& in, long i) {
 }
 
 #if defined(__AVX512F__)
+// The gather's sums hold a force in lanes 0..2 and a torque in lanes 3..5.
+constexpr __mmask8 force_lanes = 0x07, torque_lanes = 0x38;
+// A Vec3 in lanes 0..2, zeros in the others.
+GRAINLAB_PASS_INLINE v8 in_force_lanes(const double* vec3) {
+  return reinterpret_cast<v8>(_mm512_maskz_loadu_pd(force_lanes, vec3));
+}
+// A Vec3 in lanes 3..5, the other lanes those of `rest` (loaded from 3 doubles before it: the
+// lanes masked off are not read).
+GRAINLAB_PASS_INLINE v8 in_torque_lanes(const double* vec3, v8 rest = v8{}) {
+  return reinterpret_cast<v8>(_mm512_mask_loadu_pd(
+      reinterpret_cast<__m512d>(rest), torque_lanes,
+      reinterpret_cast<const double*>(reinterpret_cast<uintptr_t>(vec3) - 24)));
+}
+// Particle i's force from lanes 0..2 of f, its torque from lanes 3..5 of t.
+GRAINLAB_PASS_INLINE void store_sums(const GatherInput& in, long i, v8 f, v8 t) {
+  _mm512_mask_storeu_pd(in.force + 3 * i, force_lanes, reinterpret_cast<__m512d>(f));
+  _mm512_mask_storeu_pd(
+      reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24), torque_lanes,
+      reinterpret_cast<__m512d>(t));
+}
+
 // gather_particle with a particle's force in lanes 0..2 of one vector and its torque in lanes
 // 3..5 of another: a pair entry's result (force, torque arm, overlap, F_n) is one load, its force
 // added to the one and its arm, times the lever, to the other; the other lanes are never stored.
 GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v8 gravity) {
-  constexpr __mmask8 force_lanes = 0x07, torque_lanes = 0x38;
   const double r = in.radius[i];
   v8 f{}, t{};
   if (in.inverse_mass[i] > 0.0) f = splat(1.0 / in.inverse_mass[i]) * gravity;
@@ -291,22 +311,12 @@ GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v
     f = f - result;
     t = t + splat(r - 0.5 * x[6]) * result;
   }
-  // (a Vec3 loaded into lanes 3..5 from 3 doubles before it: the lanes masked off are not read)
-  const auto in_torque_lanes = [](const double* vec3) {
-    return reinterpret_cast<v8>(_mm512_maskz_loadu_pd(
-        torque_lanes, reinterpret_cast<const double*>(reinterpret_cast<uintptr_t>(vec3) - 24)));
-  };
   for (uint32_t e = in.wall_row_start[i]; e < in.wall_row_start[i + 1]; ++e) {
-    f = f + reinterpret_cast<v8>(
-                _mm512_maskz_loadu_pd(force_lanes, in.force_on_particle + 3 * size_t{e}));
+    f = f + in_force_lanes(in.force_on_particle + 3 * size_t{e});
     t = t + in_torque_lanes(in.torque_on_particle + 3 * size_t{e});
   }
-  if (in.external_force)
-    f = f + reinterpret_cast<v8>(_mm512_maskz_loadu_pd(force_lanes, in.external_force + 3 * i));
-  _mm512_mask_storeu_pd(in.force + 3 * i, force_lanes, reinterpret_cast<__m512d>(f));
-  _mm512_mask_storeu_pd(
-      reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24), torque_lanes,
-      reinterpret_cast<__m512d>(t));
+  if (in.external_force) f = f + in_force_lanes(in.external_force + 3 * i);
+  store_sums(in, i, f, t);
 }
 
 // The sums of the particles [first, end), at most gather_flat_block of them, each the arithmetic
@@ -323,7 +333,6 @@ GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long en
     const double inverse_mass = in.inverse_mass[first + k];
     sum[k] = inverse_mass > 0.0 ? splat(1.0 / inverse_mass) * gravity : v8{};
   }
-  constexpr __mmask8 torque_lanes = 0x38;
   const double* const result = in.result;
   const double* const radius = in.radius;
   for (uint32_t e = in.row_start[first], row_end = in.row_start[end]; e < row_end; ++e) {
@@ -349,23 +358,15 @@ GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long en
   for (uint32_t e = in.wall_row_start[first], wall_end = in.wall_row_start[end]; e < wall_end;
        ++e) {
     const long k = in.wall_owner[e] - first;
-    const __m512d f = _mm512_maskz_loadu_pd(0x07, in.force_on_particle + 3 * size_t{e});
-    // (the torque into lanes 3..5 from 3 doubles before it: the lanes masked off are not read)
-    const __m512d t = _mm512_mask_loadu_pd(
-        f, torque_lanes,
-        reinterpret_cast<const double*>(
-            reinterpret_cast<uintptr_t>(in.torque_on_particle + 3 * size_t{e}) - 24));
-    sum[k] = sum[k] + reinterpret_cast<v8>(t);
+    // (the wall's force and torque in one vector: each lane adds what the per-particle loop adds)
+    sum[k] = sum[k] + in_torque_lanes(in.torque_on_particle + 3 * size_t{e},
+                                      in_force_lanes(in.force_on_particle + 3 * size_t{e}));
   }
   for (long k = 0; k < count; ++k) {
     const long i = first + k;
     v8 s = sum[k];
-    if (in.external_force)
-      s = s + reinterpret_cast<v8>(_mm512_maskz_loadu_pd(0x07, in.external_force + 3 * i));
-    _mm512_mask_storeu_pd(in.force + 3 * i, 0x07, reinterpret_cast<__m512d>(s));
-    _mm512_mask_storeu_pd(
-        reinterpret_cast<double*>(reinterpret_cast<uintptr_t>(in.torque + 3 * i) - 24),
-        torque_lanes, reinterpret_cast<__m512d>(s));
+    if (in.external_force) s = s + in_force_lanes(in.external_force + 3 * i);
+    store_sums(in, i, s, s);
   }
 }
 #endif
