@@ -87,20 +87,34 @@ for rep in $(seq 1 "$reps"); do
 done
 
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
+# "median (min-max)" of the repetitions' own ratios grainlab / peer ("nan" pairs left out)
+paired_ratios() {  # grainlab_samples peer_samples
+  awk -v g="$1" -v p="$2" 'BEGIN {
+    n = split(g, a, " "); split(p, b, " "); m = 0
+    for (k = 1; k <= n; ++k) if (b[k] + 0 > 0 && a[k] + 0 > 0) r[++m] = a[k] / b[k]
+    if (m == 0) { print "pairs: none"; exit }
+    for (i = 2; i <= m; ++i) for (j = i; j > 1 && r[j - 1] > r[j]; --j) { x = r[j]; r[j] = r[j - 1]; r[j - 1] = x }
+    med = (m % 2) ? r[(m + 1) / 2] : (r[m / 2] + r[m / 2 + 1]) / 2
+    printf "%.2f (%.2f-%.2f)", med, r[1], r[m] }'
+}
 host=$(hostname)
 csv=$root/bench/results/compare-$host.csv
 [[ -f $csv ]] || echo "date_utc,workload,steps,reps,code,threads,median_particle_steps_per_s,samples,ratio_grainlab_over_code" > "$csv"
 date=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 printf '\n%s, %s steps, %s repetitions, medians in particle-steps/s (grainlab: OpenMP threads; peers: MPI ranks)\n' \
   "$workload" "$steps" "$reps"
-printf '%-10s %8s %14s %14s %10s\n' code threads median grainlab ratio
+printf '%-10s %8s %14s %14s %10s   %s\n' code threads median grainlab ratio "repetitions' own ratios: median (min-max)"
 for t in 1 2; do
   g=$(echo "${samples[grainlab,$t]}" | median)
   echo "$date,$workload,$steps,$reps,grainlab,$t,$g,\"${samples[grainlab,$t]% }\",1" >> "$csv"
   for peer in "${peers[@]}"; do
     p=$(echo "${samples[$peer,$t]}" | median)
     ratio=$(awk -v g="$g" -v p="$p" 'BEGIN {printf "%.2f", g / p}')
-    printf '%-10s %8s %14.4g %14.4g %10s\n' "$peer" "$t" "$p" "$g" "$ratio"
+    # each repetition's own pair (grainlab, then this peer, minutes apart at most): a slow spell
+    # of the machine that spans both runs cancels in their ratio, so the pairs' spread shows how
+    # far the medians' ratio can be trusted
+    paired=$(paired_ratios "${samples[grainlab,$t]}" "${samples[$peer,$t]}")
+    printf '%-10s %8s %14.4g %14.4g %10s   %s\n' "$peer" "$t" "$p" "$g" "$ratio" "$paired"
     echo "$date,$workload,$steps,$reps,$peer,$t,$p,\"${samples[$peer,$t]% }\",$ratio" >> "$csv"
   done
 done
