@@ -89,13 +89,12 @@ done
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
 # "median (min-max)" of the repetitions' own ratios grainlab / peer ("nan" pairs left out)
 paired_ratios() {  # grainlab_samples peer_samples
-  awk -v g="$1" -v p="$2" 'BEGIN {
-    n = split(g, a, " "); split(p, b, " "); m = 0
-    for (k = 1; k <= n; ++k) if (b[k] + 0 > 0 && a[k] + 0 > 0) r[++m] = a[k] / b[k]
-    if (m == 0) { print "pairs: none"; exit }
-    for (i = 2; i <= m; ++i) for (j = i; j > 1 && r[j - 1] > r[j]; --j) { x = r[j]; r[j] = r[j - 1]; r[j - 1] = x }
-    med = (m % 2) ? r[(m + 1) / 2] : (r[m / 2] + r[m / 2 + 1]) / 2
-    printf "%.2f (%.2f-%.2f)", med, r[1], r[m] }'
+  local ratios
+  ratios=$(awk -v g="$1" -v p="$2" 'BEGIN {
+    n = split(g, a, " "); split(p, b, " ")
+    for (k = 1; k <= n; ++k) if (a[k] + 0 > 0 && b[k] + 0 > 0) print a[k] / b[k] }' | sort -g)
+  [[ -n $ratios ]] || { echo "pairs: none"; return; }
+  printf '%.2f (%.2f-%.2f)' "$(echo "$ratios" | median)" "$(head -n 1 <<<"$ratios")" "$(tail -n 1 <<<"$ratios")"
 }
 host=$(hostname)
 csv=$root/bench/results/compare-$host.csv
