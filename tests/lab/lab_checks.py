@@ -152,6 +152,28 @@ def prepared_tiny(d, extra=""):
     return path
 
 
+def preparation_unbalanced_tolerance_ends_the_hold():
+    """`preparation_unbalanced_tolerance` is the hold's criterion: the tiny triaxial specimen
+    prepared with the default (1e-4) and with 1e-2 ends each hold below its own tolerance, and the
+    looser one in fewer steps (were the key ignored, both would take the same steps)."""
+    with tempfile.TemporaryDirectory() as d:
+        found = {}
+        for tolerance in (None, 1e-2):
+            path = os.path.join(d, "tiny.toml")
+            extra = "" if tolerance is None else f"\npreparation_unbalanced_tolerance = {tolerance}"
+            open(path, "w").write(TINY.replace("count = 250", "count = 250" + extra))
+            spec = os.path.join(d, f"spec-{tolerance}")
+            r = run("prepare", path, "--out", spec, "--quiet", "--threads", "1")
+            assert r.returncode == 0, r.stderr
+            found[tolerance] = json.load(open(os.path.join(spec, "specimen.json")))
+        strict, loose = found[None], found[1e-2]
+        assert strict["equilibrium_reached"] and loose["equilibrium_reached"], (strict, loose)
+        assert strict["unbalanced_force_ratio"] < 1e-4, strict["unbalanced_force_ratio"]
+        assert loose["unbalanced_force_ratio"] < 1e-2, loose["unbalanced_force_ratio"]
+        assert loose["steps"] < strict["steps"], (loose["steps"], strict["steps"])
+        print("hold to 1e-4:", strict["steps"], "steps; to 1e-2:", loose["steps"])
+
+
 def compare_runs(a, b):
     assert open(os.path.join(a, "curve.csv")).read() == open(os.path.join(b, "curve.csv")).read(), "curve differs"
     sa, sb = json.load(open(os.path.join(a, "summary.json"))), json.load(open(os.path.join(b, "summary.json")))
@@ -658,6 +680,8 @@ def plane_strain_bad_input():
                                  ("compaction_strain_rate", "1e9", "(0, 1000]"),
                                  ("preparation_max_time", '"0 s"', "(0, 100]"),
                                  ("preparation_max_time", '"1e6 s"', "(0, 100]"),
+                                 ("preparation_unbalanced_tolerance", "0", "(0, 0.1]"),
+                                 ("preparation_unbalanced_tolerance", "0.5", "(0, 0.1]"),
                                  ("re_equilibration_max_time", '"0 s"', "> 0 s"),
                                  ("re_equilibration_max_time", '"1e9 s"', "steps"),
                                  ("gravity", '"-9.81 m/s^2"', "[0, 1000]")):
