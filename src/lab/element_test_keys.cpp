@@ -95,8 +95,8 @@ ElementTestConfig read_element_test_keys(const std::string& path, const toml::ta
   p.max_time = t.number_or("preparation_max_time", Quantity::time, p.max_time);
   if (!(p.max_time > 0 && p.max_time <= 100))
     t.fail("preparation_max_time", "expected a simulated time in (0, 100] s");
-  p.unbalanced_tolerance = t.number_or("preparation_unbalanced_tolerance",
-                                       Quantity::dimensionless, p.unbalanced_tolerance);
+  p.unbalanced_tolerance = t.number_or("preparation_unbalanced_tolerance", Quantity::dimensionless,
+                                       p.unbalanced_tolerance);
   if (!(p.unbalanced_tolerance > 0 && p.unbalanced_tolerance <= 0.1))
     t.fail("preparation_unbalanced_tolerance",
            "expected a ratio of mean unbalanced to mean contact force in (0, 0.1]");
