@@ -187,6 +187,12 @@ def triaxial_interrupt_and_resume():
     import time
     with tempfile.TemporaryDirectory() as d:
         path = prepared_tiny(d)
+        # Sheared to 12 % instead of TINY's 4 %: 6.6 s on one thread, so that the SIGINT at 2 s
+        # falls well inside the shearing on a fast machine too (to 4 % the whole run took 2.4 s on
+        # the VM's Intel host, and the signal sometimes came after its end).
+        text = open(path).read()
+        assert "max_axial_strain = 0.04" in text
+        open(path, "w").write(text.replace("max_axial_strain = 0.04", "max_axial_strain = 0.12"))
         a, b = os.path.join(d, "a"), os.path.join(d, "b")
         r = run("run", path, "--out", a, "--quiet", "--threads", "1")
         assert r.returncode == 0, r.stderr
