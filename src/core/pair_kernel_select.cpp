@@ -62,7 +62,7 @@ bool prefetch_pays(double partner_reach, long l2_cache_bytes) {
 int one_sweep_team(double partner_reach, long max_partner_ahead, long l2_cache_bytes,
                    long l3_cache_bytes) {
   if (static_cast<double>(max_partner_ahead) * touched_bytes_per_bead >
-      0.25 * static_cast<double>(l3_cache_bytes))
+      0.5 * static_cast<double>(l3_cache_bytes))
     return 0;
   return prefetch_pays(partner_reach, l2_cache_bytes) ? 2 : 1;
 }

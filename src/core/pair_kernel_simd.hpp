@@ -235,17 +235,20 @@ PartnerReach partner_reach(const uint32_t* row_start, const uint32_t* partner, s
 // This CPU's L2 data cache per core, bytes (1 MiB where the system does not say).
 long l2_cache_bytes();
 // The largest team a step runs as one sweep with automatically (core/one_sweep.cpp,
-// docs/performance.md sec. 27 and 37); 0: none. Only where what a step touches of the beads the
-// drift runs ahead of the rows (max_partner_ahead: the farthest partner's distance in the
-// particle order) fits in a quarter of the L3, so that the records and results a sweep writes
-// are still cached when it reads them; then on up to 2 threads where the rows' prefetch pays
-// (the partners lie beyond the L2), and on one thread where they lie inside it. Measured on the
-// 2-core VM (1 MiB L2, 32 MiB L3): 88,400 beads (reach 1,475, ahead 2,952: 4.3 MiB) 1.11-1.14x
-// faster on 1 thread, 1.075x on 2; 46,544 (997 and 2,029: 3.0 MiB) 1.00-1.03x on 1; 744,704
-// (ahead 7,933: 11.6 MiB) 0.96x. 11,636 (sec. 37): 1.05x on 1 thread; on 2 threads from 0.96 to
-// 1.05x idle, and 8 % slower where another process takes slices of one core (the sweep's blocks
-// are fixed where the stages share their chunks), so 2 threads keep the stages there. At more
-// than 2 threads the stages share their chunks and were faster on a 16-core Xeon (sec. 31).
+// docs/performance.md sec. 27, 37 and 45); 0: none. Only where what a step touches of the beads
+// the drift runs ahead of the rows (max_partner_ahead: the farthest partner's distance in the
+// particle order) fits in half the L3, so that the records and results a sweep writes are still
+// cached when it reads them; then on up to 2 threads where the rows' prefetch pays (the partners
+// lie beyond the L2), and on one thread where they lie inside it. Measured on the 2-core VM
+// (1 MiB L2, 32 MiB L3): 88,400 beads (reach 1,475, ahead 2,952: 4.3 MiB) 1.11-1.14x faster on
+// 1 thread, 1.075x on 2; 46,544 (997 and 2,029: 3.0 MiB) 1.00-1.03x on 1; 744,704 in a cube
+// (ahead 7,933: 11.6 MiB) 0.96x in sec. 27, 1.10-1.22x on 1 thread and 1.05-1.16x on 2 in
+// sec. 45; in flatter tiles (sec. 45) ahead 12,367 (18.1 MiB) 1.06-1.15x and 1.08-1.12x, ahead
+// 17,853 (26.2 MiB) 0.98-1.08x and 0.97-0.99x, ahead 31,683 (46 MiB) 0.92-1.08x and 0.90-0.93x.
+// 11,636 (sec. 37): 1.05x on 1 thread; on 2 threads from 0.96 to 1.05x idle, and 8 % slower
+// where another process takes slices of one core (the sweep's blocks are fixed where the stages
+// share their chunks), so 2 threads keep the stages there. At more than 2 threads the stages
+// share their chunks and were faster on a 16-core Xeon (sec. 31).
 int one_sweep_team(double partner_reach, long max_partner_ahead, long l2_cache_bytes,
                    long l3_cache_bytes);
 // This CPU's L3 cache, bytes (8 MiB where the system does not say).
