@@ -60,8 +60,9 @@ std::string hostname() {
 }
 
 // dense-88k: the plane strain reference specimen as the lab's own preparation leaves it
-// (`grainlab prepare examples/plane_strain/reference.toml --out DIR`, ~22 minutes on 2 cores,
-// checkpointed): its beads and box, read from DIR/specimen.csv.
+// (`grainlab prepare examples/plane_strain/reference.toml --out DIR`, about 10 minutes on 2
+// cores since its hold ends at 1e-3, docs/performance.md sec. 46; checkpointed): its beads and
+// box, read from DIR/specimen.csv.
 Packing packing_of_specimen(const std::string& specimen_csv) {
   const Specimen s = load_specimen(specimen_csv, glass_density, 0);
   Packing p;
@@ -89,7 +90,7 @@ Packing load_or_make(const std::string& workload, const std::string& cache_dir, 
       throw CLI::ValidationError(
           "dense-88k",
           "the plane strain reference specimen: prepare it once with `grainlab prepare "
-          "examples/plane_strain/reference.toml --out DIR` (about 22 minutes on 2 cores) and "
+          "examples/plane_strain/reference.toml --out DIR` (about 10 minutes on 2 cores) and "
           "pass --specimen DIR/specimen.csv");
     p = packing_of_specimen(specimen_csv);
   } else if (workload == "settle-1M") {
