@@ -18,6 +18,11 @@
 #error "GRAINLAB_SIMD_NS must name the instruction set's namespace"
 #endif
 
+// AVX2 without AVX-512: 4 lanes, one 256-bit register per value (core/simd_lanes.hpp)
+#if defined(__AVX2__) && !defined(__AVX512F__)
+#define GRAINLAB_LANES 4
+#endif
+
 namespace grainlab::GRAINLAB_SIMD_NS {
 namespace {
 
@@ -129,16 +134,32 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   const double max_fraction = largest_ordered(fraction, (1u << b.count) - 1u);
   // The results, one vector per value, transposed to one 64-byte PairResult per lane and stored
   // whole (a line each, where a scatter per value would write 8 values across 8 lines).
-  const vd value[lanes] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x,
-                           arm.y,        arm.z,        overlap,      normal_force};
+  static_assert(pair_result_size == 8);
+#if GRAINLAB_LANES == 8
+  const vd value[pair_result_size] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x,
+                                      arm.y,        arm.z,        overlap,      normal_force};
   vd row[lanes];
   transpose8(value, row);
-  static_assert(pair_result_size == lanes);
   // (a loop of constant length, unrolled: the rows stay in registers)
 #pragma GCC unroll 8
   for (int l = 0; l < lanes; ++l)
     if (store >> l & 1u)
       __builtin_memcpy(in.result + size_t{b.e[l]} * pair_result_size, &row[l], sizeof row[l]);
+#else
+  // 4 lanes: values 0..3 and 4..7 of each lane's line from two 4 x 4 transposes
+  const vd4 low[4] = {force_on_i.x, force_on_i.y, force_on_i.z, arm.x};
+  const vd4 high[4] = {arm.y, arm.z, overlap, normal_force};
+  vd4 row_low[4], row_high[4];
+  transpose4(low, row_low);
+  transpose4(high, row_high);
+#pragma GCC unroll 4
+  for (int l = 0; l < lanes; ++l)
+    if (store >> l & 1u) {
+      double* line = in.result + size_t{b.e[l]} * pair_result_size;
+      __builtin_memcpy(line, &row_low[l], sizeof row_low[l]);
+      __builtin_memcpy(line + 4, &row_high[l], sizeof row_high[l]);
+    }
+#endif
   store_lanes3(in.sliding_spring, b.e, spring, store);
   return max_fraction;
 }
@@ -204,7 +225,8 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
       return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
                                        (apart & ~to_scratch));
     };
-    const vd zero{};
+    using result_line = double __attribute__((vector_size(pair_result_size * sizeof(double))));
+    const result_line zero{};
     __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
     store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
     // (the count in a register: the batch's own count is set only for the lanes)

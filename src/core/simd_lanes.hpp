@@ -11,17 +11,44 @@
 
 #define GRAINLAB_LANES_INLINE [[gnu::always_inline]] inline
 
-constexpr int lanes = 8;
-using vd = double __attribute__((vector_size(64)));
-using vmask = long long __attribute__((vector_size(64)));  // per lane: -1 true, 0 false
+// Lanes per vector: 8 unless the including file sets GRAINLAB_LANES to 4 (the pair kernel's AVX2
+// object: 8 lanes there are two 256-bit registers per value, and AVX2's 16 registers then hold
+// only 8 values, so the law's live values spilled to the stack and it ran no faster than the
+// scalar loop; docs/performance.md sec. 48).
+#ifndef GRAINLAB_LANES
+#define GRAINLAB_LANES 8
+#endif
+constexpr int lanes = GRAINLAB_LANES;
+static_assert(lanes == 8 || lanes == 4);
+using vd = double __attribute__((vector_size(lanes * 8)));
+using vmask = long long __attribute__((vector_size(lanes * 8)));  // per lane: -1 true, 0 false
+using vd4 = double __attribute__((vector_size(32)));
 
 GRAINLAB_LANES_INLINE vd splat(double x) {  // x in every lane
+#if GRAINLAB_LANES == 8
   return vd{x, x, x, x, x, x, x, x};
+#else
+  return vd{x, x, x, x};
+#endif
+}
+
+// 4 x 4 transpose: value[v][l] = r[l][v] (its own inverse).
+GRAINLAB_LANES_INLINE void transpose4(const vd4 (&r)[4], vd4 (&value)[4]) {
+  const vd4 t0 = __builtin_shufflevector(r[0], r[1], 0, 4, 2, 6);
+  const vd4 t1 = __builtin_shufflevector(r[0], r[1], 1, 5, 3, 7);
+  const vd4 t2 = __builtin_shufflevector(r[2], r[3], 0, 4, 2, 6);
+  const vd4 t3 = __builtin_shufflevector(r[2], r[3], 1, 5, 3, 7);
+  value[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  value[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  value[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  value[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
 #if defined(__AVX512F__)
   return _mm512_mask_sqrt_pd(a, 0xFF, a);  // all lanes (the unmasked form warns in GCC 12)
+#elif defined(__AVX__) && GRAINLAB_LANES == 4
+  return _mm256_sqrt_pd(a);
 #elif defined(__AVX__)
   const __m256d lo = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 0, 1, 2, 3));
   const __m256d hi = _mm256_sqrt_pd(__builtin_shufflevector(a, a, 4, 5, 6, 7));
@@ -41,6 +68,8 @@ GRAINLAB_LANES_INLINE vd lane_sqrt(vd a) {
 GRAINLAB_LANES_INLINE unsigned lane_bits(vmask m) {
 #if defined(__AVX512F__)
   return _mm512_cmpneq_epi64_mask(reinterpret_cast<__m512i>(m), _mm512_setzero_si512());
+#elif defined(__AVX__) && GRAINLAB_LANES == 4
+  return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(m)));  // -1: sign set
 #else
   unsigned bits = 0;
   for (int l = 0; l < lanes; ++l) bits |= (m[l] != 0 ? 1u : 0u) << l;
@@ -114,14 +143,19 @@ GRAINLAB_LANES_INLINE V3 select(vmask m, const V3& a, const V3& b) {
 // (plain loads: the values are bit for bit those of scalar loads).
 struct LaneIndex {
   const uint32_t* index;
-#if defined(__AVX2__)
+#if defined(__AVX2__) && GRAINLAB_LANES == 4
+  __m128i times1, times3;  // 4 x int32
+#elif defined(__AVX2__)
   __m256i times1, times3;  // 8 x int32
 #endif
 };
 GRAINLAB_LANES_INLINE LaneIndex lane_index(const uint32_t* index) {
   LaneIndex r{};
   r.index = index;
-#if defined(__AVX2__)
+#if defined(__AVX2__) && GRAINLAB_LANES == 4
+  r.times1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(index));
+  r.times3 = _mm_add_epi32(_mm_add_epi32(r.times1, r.times1), r.times1);
+#elif defined(__AVX2__)
   r.times1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
   r.times3 = _mm256_add_epi32(_mm256_add_epi32(r.times1, r.times1), r.times1);
 #endif
@@ -134,6 +168,11 @@ GRAINLAB_LANES_INLINE vd load_lanes(const double* base, const LaneIndex& x, int 
   // (the masked form with all lanes on: the unmasked one warns in GCC 12)
   return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xFF, stride == 3 ? x.times3 : x.times1,
                                   base + offset, 8);
+#elif defined(__AVX2__) && GRAINLAB_LANES == 4
+  // (the masked form with all lanes on, as for AVX-512)
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + offset,
+                                  stride == 3 ? x.times3 : x.times1, all, 8);
 #elif defined(__AVX2__)
   // (the masked form with all lanes on, as for AVX-512)
   const __m256i index = stride == 3 ? x.times3 : x.times1;
@@ -187,6 +226,7 @@ GRAINLAB_LANES_INLINE void store_lane3(double* base, uint32_t index, const V3& v
   out[2] = v.z[l];
 }
 
+#if GRAINLAB_LANES == 8
 // 8 x 8 transpose: value[v][l] = r[l][v] (rows of 8 values per lane to one vector per value, or
 // back: the transpose is its own inverse). Pairs of rows, then quads, then halves.
 GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) {
@@ -213,13 +253,13 @@ GRAINLAB_LANES_INLINE void transpose8(const vd (&r)[lanes], vd (&value)[lanes]) 
       value[v + 4] = __builtin_shufflevector(lo, hi, 4, 5, 6, 7, 12, 13, 14, 15);
     }
 }
+#endif
 
 // The velocities of each lane's particle from its record (particle_records): per lane a load of
 // values 0..7 and one of values 8..11, each transposed so that a value is one lane vector. (On the
 // development VM's Zen 5 a 512-bit shuffle is a scarce operation: 96 more per batch made the step
 // 11 % slower.) The two halves are loaded where they are first needed, which keeps fewer vectors
 // live.
-using vd4 = double __attribute__((vector_size(32)));
 struct RecordHead {  // values 0..7
   V3 velocity, spin;
   vd velocity_at_end_x, velocity_at_end_y;
@@ -258,6 +298,17 @@ GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const ui
     value[4 * h + 3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
   }
   return {{value[0], value[1], value[2]}, {value[3], value[4], value[5]}, value[6], value[7]};
+#elif GRAINLAB_LANES == 4
+  // values 0..3 and 4..7 of each lane, each 4 x 4 block transposed
+  vd4 low[4], high[4], v[4], w[4];  // v: values 0..3, w: values 4..7
+  for (int l = 0; l < 4; ++l) {
+    const double* r = record + size_t{index[l]} * particle_record_size;
+    __builtin_memcpy(&low[l], r, sizeof low[l]);
+    __builtin_memcpy(&high[l], r + 4, sizeof high[l]);
+  }
+  transpose4(low, v);
+  transpose4(high, w);
+  return {{v[0], v[1], v[2]}, {v[3], w[0], w[1]}, w[2], w[3]};
 #else
   vd r[lanes];  // r[l]: values 0..7 of lane l
   for (int l = 0; l < lanes; ++l)
@@ -272,6 +323,13 @@ struct RecordTail {  // values 8..11
   V3 spin_at_end;
 };
 GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const uint32_t* index) {
+#if GRAINLAB_LANES == 4
+  vd4 q[4], value[4];  // q[l]: values 8..11 of lane l
+  for (int l = 0; l < 4; ++l)
+    __builtin_memcpy(&q[l], record + size_t{index[l]} * particle_record_size + 8, sizeof q[l]);
+  transpose4(q, value);
+  return {value[0], {value[1], value[2], value[3]}};
+#else
   // 4 x 8 transpose: lanes l and l + 4 side by side (with AVX-512 by the loads, as in
   // load_record_head), then pairs and quads as above.
   vd c[4], d[4], value[4];
@@ -295,6 +353,7 @@ GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const ui
   value[1] = __builtin_shufflevector(d[1], d[3], 0, 1, 8, 9, 4, 5, 12, 13);
   value[3] = __builtin_shufflevector(d[1], d[3], 2, 3, 10, 11, 6, 7, 14, 15);
   return {value[0], {value[1], value[2], value[3]}};
+#endif
 }
 
 // Stores lane l of v at base + 3 index[l] for the lanes in `store`.
