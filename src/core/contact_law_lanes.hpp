@@ -1,8 +1,8 @@
-// The contact law on the lanes (8, or 4 in the AVX2 pair rows), for pairs and walls alike (contact_response of
-// contact/contact_law.hpp without the optional pieces): included by the kernel objects
-// core/pair_kernel_simd.cpp and core/wall_kernel_simd.cpp, after core/simd_lanes.hpp, inside
-// their per-instruction-set namespace and an anonymous one (no include guard and no includes of
-// its own: it is a part of those files).
+// The contact law on the lanes (8, or 4 in the AVX2 pair rows), for pairs and walls alike
+// (contact_response of contact/contact_law.hpp without the optional pieces): included by the
+// kernel objects core/pair_kernel_simd.cpp and core/wall_kernel_simd.cpp, after
+// core/simd_lanes.hpp, inside their per-instruction-set namespace and an anonymous one (no include
+// guard and no includes of its own: it is a part of those files).
 #ifndef GRAINLAB_SIMD_NS
 #error "core/contact_law_lanes.hpp is part of the kernel objects"
 #endif

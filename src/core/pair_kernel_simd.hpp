@@ -1,10 +1,9 @@
 // The particle-pair force loop for the reference contact law (sliding friction only: no rolling,
-// twisting or rolling-force pieces), vectorised across contacts: 8 contacts per lane vector (4 for
-// the pair rows of the AVX2 object, core/simd_lanes.hpp),
-// the branches of the law (the clamp of F_n, the turn of the spring into the tangent plane, the
-// slip) as per-lane selects; and the same law for the particle-wall contacts (wall_law; for plane
-// walls also the search for the touching candidates, plane_wall_rows, and the walls' totals,
-// wall_totals: core/wall_kernel_simd.cpp).
+// twisting or rolling-force pieces), vectorised across contacts: 8 contacts per lane vector (4 in
+// the AVX2 object's pair rows, core/simd_lanes.hpp), the branches of the law (the clamp of F_n,
+// the turn of the spring into the tangent plane, the slip) as per-lane selects; and the same law
+// for the particle-wall contacts (wall_law; for plane walls also the search for the touching
+// candidates, plane_wall_rows, and the walls' totals, wall_totals: core/wall_kernel_simd.cpp).
 //
 // Each lane does exactly the arithmetic of the scalar loop (core/contact_forces.cpp with
 // contact/contact_law.hpp), in the same order, with IEEE operations only (+ - * / and a

@@ -20,8 +20,9 @@
 #endif
 constexpr int lanes = GRAINLAB_LANES;
 static_assert(lanes == 8 || lanes == 4);
-using vd = double __attribute__((vector_size(lanes * 8)));
-using vmask = long long __attribute__((vector_size(lanes * 8)));  // per lane: -1 true, 0 false
+using vd = double __attribute__((vector_size(lanes * sizeof(double))));
+using vmask =
+    long long __attribute__((vector_size(lanes * sizeof(long long))));  // -1 true, 0 false
 using vd4 = double __attribute__((vector_size(32)));
 
 GRAINLAB_LANES_INLINE vd splat(double x) {  // x in every lane
