@@ -8,7 +8,9 @@
 // 24 components as the scalar loop does on each, and a squared length is formed from the x, y
 // and z vectors that two permutations pick out of the three. The particles left over (fewer
 // than 8) take the scalar loop: the same arithmetic. The gather keeps a particle's force and
-// torque in two vectors, to which each of its entries' 64-byte results is added whole.
+// torque in two vectors, to which each of its entries' 64-byte results is added whole (with
+// AVX2, two 256-bit vectors and two loads of 4 values from each result: docs/performance.md
+// sec. 49).
 #include "core/particle_passes_simd.hpp"
 
 #include <immintrin.h>
@@ -369,6 +371,91 @@ GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long en
     store_sums(in, i, s, s);
   }
 }
+#elif defined(__AVX2__)
+// With AVX2 a particle's force is lanes 0..2 of one 256-bit vector and its torque lanes 0..2 of
+// another (lane 3 of each is never stored): a pair entry's force is the first 4 values of its
+// result line (force, torque arm, overlap, F_n), its arm the 4 from value 3 on, each one load.
+using v4 = double __attribute__((vector_size(32)));
+GRAINLAB_PASS_INLINE v4 load4(const double* p) {
+  v4 x;
+  __builtin_memcpy(&x, p, sizeof x);
+  return x;
+}
+GRAINLAB_PASS_INLINE v4 splat4(double x) {
+  return v4{x, x, x, x};
+}
+// A Vec3 in lanes 0..2, a zero in lane 3 (nothing is read past the Vec3: it may end its array).
+GRAINLAB_PASS_INLINE v4 load3(const double* vec3) {
+  return reinterpret_cast<v4>(_mm256_maskload_pd(vec3, _mm256_setr_epi64x(-1, -1, -1, 0)));
+}
+// Lanes 0..2 of x to a Vec3.
+GRAINLAB_PASS_INLINE void store3(double* vec3, v4 x) {
+  const __m256d v = reinterpret_cast<__m256d>(x);
+  _mm_storeu_pd(vec3, _mm256_castpd256_pd128(v));
+  _mm_store_sd(vec3 + 2, _mm256_extractf128_pd(v, 1));
+}
+// An entry's share of its particle's sums: x in the force's lanes, the lever times the arm in
+// the torque's (Vec3's f + x and t + lever * arm, component by component).
+struct Sums4 {
+  v4 force, torque;
+};
+GRAINLAB_PASS_INLINE void add_row_entry(Sums4& s, const double* x, double r) {
+  s.force = s.force + load4(x);
+  s.torque = s.torque + splat4(r - 0.5 * x[6]) * load4(x + 3);
+}
+GRAINLAB_PASS_INLINE void add_column_entry(Sums4& s, const double* x, double r) {
+  s.force = s.force - load4(x);
+  s.torque = s.torque + splat4(r - 0.5 * x[6]) * load4(x + 3);
+}
+GRAINLAB_PASS_INLINE void add_wall_entry(Sums4& s, const GatherInput& in, uint32_t e) {
+  s.force = s.force + load3(in.force_on_particle + 3 * size_t{e});
+  s.torque = s.torque + load3(in.torque_on_particle + 3 * size_t{e});
+}
+GRAINLAB_PASS_INLINE Sums4 weight(const GatherInput& in, long i, v4 gravity) {
+  const double inverse_mass = in.inverse_mass[i];
+  return {inverse_mass > 0.0 ? splat4(1.0 / inverse_mass) * gravity : v4{}, v4{}};
+}
+GRAINLAB_PASS_INLINE void store_sums(const GatherInput& in, long i, Sums4 s) {
+  if (in.external_force) s.force = s.force + load3(in.external_force + 3 * i);
+  store3(in.force + 3 * i, s.force);
+  store3(in.torque + 3 * i, s.torque);
+}
+
+// gather_particle on the two vectors.
+GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v4 gravity) {
+  const double r = in.radius[i];
+  Sums4 s = weight(in, i, gravity);
+  for (uint32_t e = in.row_start[i]; e < in.row_start[i + 1]; ++e)
+    add_row_entry(s, in.result + 8 * size_t{e}, r);
+  for (uint32_t k = in.col_start[i]; k < in.col_start[i + 1]; ++k)
+    add_column_entry(s, in.result + 8 * size_t{in.col_pair[k]}, r);
+  for (uint32_t e = in.wall_row_start[i]; e < in.wall_row_start[i + 1]; ++e)
+    add_wall_entry(s, in, e);
+  store_sums(in, i, s);
+}
+
+// gather_flat of the AVX-512 object on the two vectors: the block's row entries in entry order,
+// then its column entries, then its wall entries, each added to its particle's sums (a
+// particle's entries are contiguous in each walk and in the order its own loops take them).
+GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long end, v4 gravity) {
+  alignas(32) Sums4 sum[gather_flat_block];
+  const long count = end - first;
+  for (long k = 0; k < count; ++k) sum[k] = weight(in, first + k, gravity);
+  const double* const result = in.result;
+  const double* const radius = in.radius;
+  for (uint32_t e = in.row_start[first], row_end = in.row_start[end]; e < row_end; ++e) {
+    const long k = in.row_owner[e] - first;
+    add_row_entry(sum[k], result + 8 * size_t{e}, radius[first + k]);
+  }
+  for (uint32_t q = in.col_start[first], col_end = in.col_start[end]; q < col_end; ++q) {
+    const uint32_t e = in.col_pair[q];
+    const long k = in.partner[e] - first;
+    add_column_entry(sum[k], result + 8 * size_t{e}, radius[first + k]);
+  }
+  for (uint32_t e = in.wall_row_start[first], wall_end = in.wall_row_start[end]; e < wall_end; ++e)
+    add_wall_entry(sum[in.wall_owner[e] - first], in, e);
+  for (long k = 0; k < count; ++k) store_sums(in, first + k, sum[k]);
+}
 #endif
 
 }  // namespace
@@ -399,6 +486,17 @@ void gather(const GatherInput& in, long first, long end) {
   const GatherInput local = in;
 #if defined(__AVX512F__)
   const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (local.row_owner && local.partner) {
+    for (long block_first = first; block_first < end; block_first += gather_flat_block) {
+      const long block_end =
+          end - block_first > gather_flat_block ? block_first + gather_flat_block : end;
+      gather_flat(local, block_first, block_end, gravity);
+    }
+    return;
+  }
+  for (long i = first; i < end; ++i) gather_particle_lanes(local, i, gravity);
+#elif defined(__AVX2__)
+  const v4 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0};
   if (local.row_owner && local.partner) {
     for (long block_first = first; block_first < end; block_first += gather_flat_block) {
       const long block_end =

@@ -83,8 +83,8 @@ struct GatherInput {
   // Each pair entry's first particle (its row's) and second (its partner), and each wall
   // entry's particle; null (the default): the gather takes the particles one by one. With the
   // first two (and the third wherever there are wall entries: it is read only for them), the
-  // AVX-512 gather walks each block of gather_flat_block particles' entries flat instead (the
-  // SSE2 and AVX2 objects ignore them); the sums are the same either way.
+  // AVX-512 and AVX2 gathers walk each block of gather_flat_block particles' entries flat
+  // instead (the SSE2 object ignores them); the sums are the same either way.
   const uint32_t* row_owner = nullptr;
   const uint32_t* partner = nullptr;
   const uint32_t* wall_owner = nullptr;

@@ -23,6 +23,13 @@
 #error "GRAINLAB_SIMD_NS must name the instruction set's namespace"
 #endif
 
+// AVX2 without AVX-512: the law on 4 lanes, one 256-bit register per value, as in the pair
+// kernel (core/pair_kernel_simd.cpp; on 8 lanes its live values spill; docs/performance.md
+// sec. 48, 49). A batch of wall_batch_lanes contacts then runs as two groups of 4.
+#if defined(__AVX2__) && !defined(__AVX512F__)
+#define GRAINLAB_LANES 4
+#endif
+
 namespace grainlab::GRAINLAB_SIMD_NS {
 namespace {
 
@@ -30,26 +37,36 @@ namespace {
 // (after the lane primitives it uses)
 #include "core/contact_law_lanes.hpp"  // NOLINT(build/include): likewise, after simd_lanes.hpp
 
-// wall_law: the law on the batch's contacts (core/pair_kernel_simd.hpp).
-unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdWallBatch& b) {
-  const int count = b.count;
-  // Unused lanes repeat the last contact: valid numbers, never stored.
+// The law on the batch's contacts first .. first + count - 1 (count <= lanes), in lanes
+// 0 .. count - 1; returns the lanes it hands back to the scalar law.
+unsigned law_on_lanes(const SimdPairInput& in, const SimdWallInput& walls, SimdWallBatch& b,
+                      int first, int count) {
+  // (the group's fields: lane l is the batch's contact first + l)
+  double* const normal_x = b.normal_x + first;
+  double* const normal_y = b.normal_y + first;
+  double* const normal_z = b.normal_z + first;
+  double* const gap_of = b.gap + first;
+  double* const overlap_of = b.overlap + first;
+  double* const radius_of = b.radius + first;
+  uint32_t* const particle = b.particle + first;
+  uint32_t* const entry = b.entry + first;
+  uint32_t* const wall = b.wall + first;
+  // Unused lanes repeat the last contact: valid numbers, never stored (within the batch: a
+  // group of fewer than `lanes` contacts is its last).
   for (int l = count; l < lanes; ++l) {
     const int last = count - 1;
-    b.normal_x[l] = b.normal_x[last], b.normal_y[l] = b.normal_y[last];
-    b.normal_z[l] = b.normal_z[last], b.gap[l] = b.gap[last], b.overlap[l] = b.overlap[last];
-    b.radius[l] = b.radius[last];
-    b.particle[l] = b.particle[last], b.entry[l] = b.entry[last], b.wall[l] = b.wall[last];
+    normal_x[l] = normal_x[last], normal_y[l] = normal_y[last], normal_z[l] = normal_z[last];
+    gap_of[l] = gap_of[last], overlap_of[l] = overlap_of[last], radius_of[l] = radius_of[last];
+    particle[l] = particle[last], entry[l] = entry[last], wall[l] = wall[last];
   }
-  static_assert(wall_batch_lanes == lanes);
   V3 n;
   vd gap, overlap, radius;
-  __builtin_memcpy(&n.x, b.normal_x, sizeof n.x);
-  __builtin_memcpy(&n.y, b.normal_y, sizeof n.y);
-  __builtin_memcpy(&n.z, b.normal_z, sizeof n.z);
-  __builtin_memcpy(&gap, b.gap, sizeof gap);
-  __builtin_memcpy(&overlap, b.overlap, sizeof overlap);
-  __builtin_memcpy(&radius, b.radius, sizeof radius);
+  __builtin_memcpy(&n.x, normal_x, sizeof n.x);
+  __builtin_memcpy(&n.y, normal_y, sizeof n.y);
+  __builtin_memcpy(&n.z, normal_z, sizeof n.z);
+  __builtin_memcpy(&gap, gap_of, sizeof gap);
+  __builtin_memcpy(&overlap, overlap_of, sizeof overlap);
+  __builtin_memcpy(&radius, radius_of, sizeof radius);
   const double drift = in.drift;
 
   // Per lane: its wall's velocities and mass, and the constants of the (bead, wall) pair.
@@ -57,17 +74,17 @@ unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdW
   vd wall_inverse_mass;
   LaneConstants k;
   for (int l = 0; l < lanes; ++l) {
-    const SimdWallState& w = walls.walls[b.wall[l]];
+    const SimdWallState& w = walls.walls[wall[l]];
     wall_velocity.x[l] = w.velocity[0], wall_velocity.y[l] = w.velocity[1];
     wall_velocity.z[l] = w.velocity[2];
     wall_velocity_at_end.x[l] = w.velocity_at_end[0];
     wall_velocity_at_end.y[l] = w.velocity_at_end[1];
     wall_velocity_at_end.z[l] = w.velocity_at_end[2];
     wall_inverse_mass[l] = w.inverse_mass;
-    k.set(l, in.pair_params[in.material[b.particle[l]] * in.material_count + w.material]);
+    k.set(l, in.pair_params[in.material[particle[l]] * in.material_count + w.material]);
   }
   // m* = m_p M / (m_p + M): a wall with mass is a second body, a fixed one has M = infinity
-  const vd inverse_mass_i = load_lanes(in.inverse_mass, lane_index(b.particle), 1, 0);
+  const vd inverse_mass_i = load_lanes(in.inverse_mass, lane_index(particle), 1, 0);
   const vd effective_mass = 1.0 / (inverse_mass_i + wall_inverse_mass);
   const vd lever = gap;  // contact point on the wall surface
   // Body B, the wall, has no spin and no lever: the scalar law multiplies and adds its zeros,
@@ -76,13 +93,13 @@ unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdW
   const vd no_lever{};
 
   // set_step_displacement (half-step velocities, lever_shrink = 1: the lever is r - U_n)
-  const RecordHead head = load_record_head(in.particle_record, b.particle);
+  const RecordHead head = load_record_head(in.particle_record, particle);
   const V3& v_i = head.velocity;
   const auto [dv, overlap_increment, tangential_displacement] =
       step_increment(n, drift, 1.0, v_i, head.spin, lever, wall_velocity, no_spin, no_lever);
 
   // set_relative_velocity with the end-of-step estimates: the dashpots' rates
-  const RecordTail tail = load_record_tail(in.particle_record, b.particle);
+  const RecordTail tail = load_record_tail(in.particle_record, particle);
   const V3 v_end_i{head.velocity_at_end_x, head.velocity_at_end_y, tail.velocity_at_end_z};
   const auto [overlap_rate, tangential_velocity] =
       contact_rates(n, v_end_i, tail.spin_at_end, lever, wall_velocity_at_end, no_spin, no_lever);
@@ -98,19 +115,28 @@ unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdW
   const vd normal_damping = 2.0 * k.damping_ratio * lane_sqrt(normal_stiffness * effective_mass);
   const LawResult law = contact_law(n, overlap, overlap_rate, tangential_displacement,
                                     tangential_velocity, normal_stiffness, normal_damping, k,
-                                    load_lanes3(walls.sliding_spring, lane_index(b.entry)));
+                                    load_lanes3(walls.sliding_spring, lane_index(entry)));
   const V3 torque = lever * law.arm;
 
   const auto [store, handed_back] = choose_lanes(count, drifted, begun);
-  store_lanes3(walls.force_on_particle, b.entry, law.force_on_a, store);
-  store_lanes3(walls.torque_on_particle, b.entry, torque, store);
-  store_lanes3(walls.sliding_spring, b.entry, law.spring, store);
+  store_lanes3(walls.force_on_particle, entry, law.force_on_a, store);
+  store_lanes3(walls.torque_on_particle, entry, torque, store);
+  store_lanes3(walls.sliding_spring, entry, law.spring, store);
   for (int l = 0; l < count; ++l) {
     if (!(store >> l & 1u)) continue;
-    const uint32_t e = b.entry[l];
+    const uint32_t e = entry[l];
     walls.normal_stiffness[e] = normal_stiffness[l];
     walls.normal_force[e] = law.normal_force[l];
   }
+  return handed_back;
+}
+
+// wall_law: the law on the batch's contacts (core/pair_kernel_simd.hpp), `lanes` at a time.
+unsigned law_on_batch(const SimdPairInput& in, const SimdWallInput& walls, SimdWallBatch& b) {
+  static_assert(wall_batch_lanes % lanes == 0);
+  unsigned handed_back = 0;
+  for (int first = 0; first < b.count; first += lanes)
+    handed_back |= law_on_lanes(in, walls, b, first, std::min(lanes, b.count - first)) << first;
   return handed_back;
 }
 
