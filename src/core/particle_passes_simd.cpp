@@ -484,19 +484,13 @@ void gather(const GatherInput& in, long first, long end) {
   // (a local copy: the compiler cannot tell that the force and torque stores leave `in` as it
   // is, and would load its pointers again for every particle)
   const GatherInput local = in;
+#if defined(__AVX512F__) || defined(__AVX2__)
+  // (gravity in the force's lanes, zeros in the others)
 #if defined(__AVX512F__)
   const v8 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0, 0.0, 0.0, 0.0, 0.0};
-  if (local.row_owner && local.partner) {
-    for (long block_first = first; block_first < end; block_first += gather_flat_block) {
-      const long block_end =
-          end - block_first > gather_flat_block ? block_first + gather_flat_block : end;
-      gather_flat(local, block_first, block_end, gravity);
-    }
-    return;
-  }
-  for (long i = first; i < end; ++i) gather_particle_lanes(local, i, gravity);
-#elif defined(__AVX2__)
+#else
   const v4 gravity{in.gravity[0], in.gravity[1], in.gravity[2], 0.0};
+#endif
   if (local.row_owner && local.partner) {
     for (long block_first = first; block_first < end; block_first += gather_flat_block) {
       const long block_end =
