@@ -3,14 +3,14 @@
 // everything but the entry points (src/core/CMakeLists.txt, tests/core/kernel_symbols.sh).
 //
 // The particle arrays are Vec3 arrays (x, y, z side by side). With AVX-512 the loop takes 8
-// particles at a time: each Vec3 array's 24 doubles are three vectors, a per-particle factor
-// (dt/2 times the inverse mass) is spread over them by a permutation, the arithmetic runs on the
-// 24 components as the scalar loop does on each, and a squared length is formed from the x, y
-// and z vectors that two permutations pick out of the three. The particles left over (fewer
-// than 8) take the scalar loop: the same arithmetic. The gather keeps a particle's force and
-// torque in two vectors, to which each of its entries' 64-byte results is added whole (with
-// AVX2, two 256-bit vectors and two loads of 4 values from each result: docs/performance.md
-// sec. 49).
+// particles at a time (with AVX2 4, and 12 doubles): each Vec3 array's 24 doubles are three
+// vectors, a per-particle factor (dt/2 times the inverse mass) is spread over them by a
+// permutation, the arithmetic runs on the 24 components as the scalar loop does on each, and a
+// squared length is formed from the x, y and z vectors that two permutations pick out of the
+// three. The particles left over (fewer than 8, or 4) take the scalar loop: the same arithmetic.
+// The gather keeps a particle's force and torque in two vectors, to which each of its entries'
+// 64-byte results is added whole (with AVX2, two 256-bit vectors and two loads of 4 values from
+// each result: docs/performance.md sec. 49).
 #include "core/particle_passes_simd.hpp"
 
 #include <immintrin.h>
@@ -99,6 +99,8 @@ GRAINLAB_PASS_INLINE void kick_particle(const ParticlePassInput& in, long i, dou
 
 #if defined(__AVX512F__)
 using v8 = double __attribute__((vector_size(64)));  // GCC's vectors: no undefined-lane intrinsics
+using pvec = v8;  // the kick's and drift's vectors: 8 particles' values
+constexpr long group_lanes = 8;
 GRAINLAB_PASS_INLINE v8 splat(double x) {
   return v8{x, x, x, x, x, x, x, x};
 }
@@ -122,19 +124,6 @@ GRAINLAB_PASS_INLINE Group spread(v8 s) {
   return {{__builtin_shufflevector(s, s, 0, 0, 0, 1, 1, 1, 2, 2),
            __builtin_shufflevector(s, s, 2, 3, 3, 3, 4, 4, 4, 5),
            __builtin_shufflevector(s, s, 5, 5, 6, 6, 6, 7, 7, 7)}};
-}
-// a + s b per component
-GRAINLAB_PASS_INLINE Group add_scaled(const Group& a, const Group& s, const Group& b) {
-  return {{a.a[0] + s.a[0] * b.a[0], a.a[1] + s.a[1] * b.a[1], a.a[2] + s.a[2] * b.a[2]}};
-}
-GRAINLAB_PASS_INLINE Group add_scaled(const Group& a, v8 s, const Group& b) {
-  return {{a.a[0] + s * b.a[0], a.a[1] + s * b.a[1], a.a[2] + s * b.a[2]}};
-}
-GRAINLAB_PASS_INLINE Group add(const Group& a, const Group& b) {
-  return {{a.a[0] + b.a[0], a.a[1] + b.a[1], a.a[2] + b.a[2]}};
-}
-GRAINLAB_PASS_INLINE Group subtract(const Group& a, const Group& b) {
-  return {{a.a[0] - b.a[0], a.a[1] - b.a[1], a.a[2] - b.a[2]}};
 }
 // Per particle x^2 + y^2 + z^2 (in that order). Of the 24 squares, x of particle p is square
 // 3p, y 3p + 1, z 3p + 2: the first two vectors hold 0..15, the third 16..23.
@@ -160,8 +149,74 @@ GRAINLAB_PASS_INLINE v8 nan_as_infinite(v8 x) {
 GRAINLAB_PASS_INLINE unsigned greater(v8 a, v8 b) {
   return _mm512_cmp_pd_mask(reinterpret_cast<__m512d>(a), reinterpret_cast<__m512d>(b), _CMP_GT_OQ);
 }
-GRAINLAB_PASS_INLINE double raise(double largest, v8 lanes) {
-  for (int l = 0; l < 8; ++l) largest = raise(largest, lanes[l]);
+#elif defined(__AVX2__)
+// With AVX2 the kick and the drift take 4 particles at a time: 12 doubles in three 256-bit
+// vectors, the same arithmetic as with AVX-512's 8.
+using v4 = double __attribute__((vector_size(32)));
+using pvec = v4;
+constexpr long group_lanes = 4;
+GRAINLAB_PASS_INLINE v4 splat(double x) {
+  return v4{x, x, x, x};
+}
+GRAINLAB_PASS_INLINE v4 load(const double* p) {
+  v4 r;
+  __builtin_memcpy(&r, p, sizeof r);
+  return r;
+}
+// 4 consecutive Vec3s: 12 doubles in three vectors.
+struct Group {
+  v4 a[3];
+};
+GRAINLAB_PASS_INLINE Group load_group(const double* p) {
+  return {{load(p), load(p + 4), load(p + 8)}};
+}
+GRAINLAB_PASS_INLINE void store_group(double* p, const Group& g) {
+  __builtin_memcpy(p, g.a, sizeof g.a);
+}
+// The 4 particles' values s in the places of their x, y and z.
+GRAINLAB_PASS_INLINE Group spread(v4 s) {
+  return {{__builtin_shufflevector(s, s, 0, 0, 0, 1), __builtin_shufflevector(s, s, 1, 1, 2, 2),
+           __builtin_shufflevector(s, s, 2, 3, 3, 3)}};
+}
+// Per particle x^2 + y^2 + z^2 (in that order): x of particle p is square 3p, y 3p + 1, z 3p + 2;
+// the first vector holds 0..3, the second 4..7, the third 8..11.
+GRAINLAB_PASS_INLINE v4 length2(const Group& d) {
+  const v4 s0 = d.a[0] * d.a[0], s1 = d.a[1] * d.a[1], s2 = d.a[2] * d.a[2];
+  const v4 x = __builtin_shufflevector(__builtin_shufflevector(s0, s1, 0, 3, 6, 0), s2, 0, 1, 2, 5);
+  const v4 y = __builtin_shufflevector(__builtin_shufflevector(s0, s1, 1, 4, 7, 0), s2, 0, 1, 2, 6);
+  const v4 z = __builtin_shufflevector(__builtin_shufflevector(s0, s1, 2, 5, 0, 0), s2, 0, 1, 4, 7);
+  return (x + y) + z;
+}
+// (largest < x) ? x : largest per lane, as raise: a NaN x leaves largest
+GRAINLAB_PASS_INLINE v4 raise(v4 largest, v4 x) {
+  return largest < x ? x : largest;
+}
+// x, with NaN lanes infinite
+GRAINLAB_PASS_INLINE v4 nan_as_infinite(v4 x) {
+  return x == x ? x : splat(__builtin_inf());
+}
+// the lanes where a > b (false for NaN), as bits
+GRAINLAB_PASS_INLINE unsigned greater(v4 a, v4 b) {
+  return static_cast<unsigned>(_mm256_movemask_pd(
+      _mm256_cmp_pd(reinterpret_cast<__m256d>(a), reinterpret_cast<__m256d>(b), _CMP_GT_OQ)));
+}
+#endif
+#if defined(__AVX512F__) || defined(__AVX2__)
+// a + s b, a + b and a - b per component
+GRAINLAB_PASS_INLINE Group add_scaled(const Group& a, const Group& s, const Group& b) {
+  return {{a.a[0] + s.a[0] * b.a[0], a.a[1] + s.a[1] * b.a[1], a.a[2] + s.a[2] * b.a[2]}};
+}
+GRAINLAB_PASS_INLINE Group add_scaled(const Group& a, pvec s, const Group& b) {
+  return {{a.a[0] + s * b.a[0], a.a[1] + s * b.a[1], a.a[2] + s * b.a[2]}};
+}
+GRAINLAB_PASS_INLINE Group add(const Group& a, const Group& b) {
+  return {{a.a[0] + b.a[0], a.a[1] + b.a[1], a.a[2] + b.a[2]}};
+}
+GRAINLAB_PASS_INLINE Group subtract(const Group& a, const Group& b) {
+  return {{a.a[0] - b.a[0], a.a[1] - b.a[1], a.a[2] - b.a[2]}};
+}
+GRAINLAB_PASS_INLINE double raise(double largest, pvec lanes) {
+  for (int l = 0; l < group_lanes; ++l) largest = raise(largest, lanes[l]);
   return largest;
 }
 #endif
@@ -171,12 +226,12 @@ void drift_range(const ParticlePassInput& given, long first, long end, DriftTall
   const ParticlePassInput in = given;  // (a local copy: see gather)
   const double half = 0.5 * in.time_step;
   long i = first;
-#if defined(__AVX512F__)
-  const v8 half8 = splat(half), dt8 = splat(in.time_step);
-  const v8 half_list_skin2 = splat(in.half_list_skin2), half_skin2 = splat(in.half_skin2);
+#if defined(__AVX512F__) || defined(__AVX2__)
+  const pvec half8 = splat(half), dt8 = splat(in.time_step);
+  const pvec half_list_skin2 = splat(in.half_list_skin2), half_skin2 = splat(in.half_skin2);
   unsigned stale = 0, moved = 0;
-  v8 displacement2{}, scale2{};
-  for (; i + 8 <= end; i += 8) {
+  pvec displacement2{}, scale2{};
+  for (; i + group_lanes <= end; i += group_lanes) {
     const long o = 3 * i;
     const Group v = add_scaled(load_group(in.velocity + o),
                                spread(half8 * load(in.inverse_mass + i)), load_group(in.force + o));
@@ -189,7 +244,7 @@ void drift_range(const ParticlePassInput& given, long first, long end, DriftTall
     store_group(in.position + o, x);
     store_group(in.rotation + o, add_scaled(load_group(in.rotation + o), dt8, w));
     if constexpr (Check) {
-      const v8 d2 = length2(subtract(x, load_group(in.position_at_refresh + o)));
+      const pvec d2 = length2(subtract(x, load_group(in.position_at_refresh + o)));
       stale |= greater(d2, half_list_skin2);
       if constexpr (Bound) {
         displacement2 = raise(displacement2, d2);
@@ -217,10 +272,10 @@ void kick_range(const ParticlePassInput& given, long first, long end, double& ma
   const ParticlePassInput in = given;  // (a local copy: see gather)
   const double half = 0.5 * in.time_step;
   long i = first;
-#if defined(__AVX512F__)
-  const v8 half8 = splat(half);
-  v8 speed2{}, next2{};
-  for (; i + 8 <= end; i += 8) {
+#if defined(__AVX512F__) || defined(__AVX2__)
+  const pvec half8 = splat(half);
+  pvec speed2{}, next2{};
+  for (; i + group_lanes <= end; i += group_lanes) {
     const long o = 3 * i;
     const Group k = spread(half8 * load(in.inverse_mass + i));
     const Group f = load_group(in.force + o);
@@ -375,15 +430,6 @@ GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long en
 // With AVX2 a particle's force is lanes 0..2 of one 256-bit vector and its torque lanes 0..2 of
 // another (lane 3 of each is never stored): a pair entry's force is the first 4 values of its
 // result line (force, torque arm, overlap, F_n), its arm the 4 from value 3 on, each one load.
-using v4 = double __attribute__((vector_size(32)));
-GRAINLAB_PASS_INLINE v4 load4(const double* p) {
-  v4 x;
-  __builtin_memcpy(&x, p, sizeof x);
-  return x;
-}
-GRAINLAB_PASS_INLINE v4 splat4(double x) {
-  return v4{x, x, x, x};
-}
 // A Vec3 in lanes 0..2, a zero in lane 3 (nothing is read past the Vec3: it may end its array).
 GRAINLAB_PASS_INLINE v4 load3(const double* vec3) {
   return reinterpret_cast<v4>(_mm256_maskload_pd(vec3, _mm256_setr_epi64x(-1, -1, -1, 0)));
@@ -400,12 +446,12 @@ struct Sums4 {
   v4 force, torque;
 };
 GRAINLAB_PASS_INLINE void add_row_entry(Sums4& s, const double* x, double r) {
-  s.force = s.force + load4(x);
-  s.torque = s.torque + splat4(r - 0.5 * x[6]) * load4(x + 3);
+  s.force = s.force + load(x);
+  s.torque = s.torque + splat(r - 0.5 * x[6]) * load(x + 3);
 }
 GRAINLAB_PASS_INLINE void add_column_entry(Sums4& s, const double* x, double r) {
-  s.force = s.force - load4(x);
-  s.torque = s.torque + splat4(r - 0.5 * x[6]) * load4(x + 3);
+  s.force = s.force - load(x);
+  s.torque = s.torque + splat(r - 0.5 * x[6]) * load(x + 3);
 }
 GRAINLAB_PASS_INLINE void add_wall_entry(Sums4& s, const GatherInput& in, uint32_t e) {
   s.force = s.force + load3(in.force_on_particle + 3 * size_t{e});
@@ -413,7 +459,7 @@ GRAINLAB_PASS_INLINE void add_wall_entry(Sums4& s, const GatherInput& in, uint32
 }
 GRAINLAB_PASS_INLINE Sums4 weight(const GatherInput& in, long i, v4 gravity) {
   const double inverse_mass = in.inverse_mass[i];
-  return {inverse_mass > 0.0 ? splat4(1.0 / inverse_mass) * gravity : v4{}, v4{}};
+  return {inverse_mass > 0.0 ? splat(1.0 / inverse_mass) * gravity : v4{}, v4{}};
 }
 GRAINLAB_PASS_INLINE void store_sums(const GatherInput& in, long i, Sums4 s) {
   if (in.external_force) s.force = s.force + load3(in.external_force + 3 * i);

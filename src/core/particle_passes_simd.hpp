@@ -13,8 +13,8 @@
 // range starts (tests/core/test_particle_passes_simd.cpp).
 //
 // Compiled once per instruction set with the pair kernel (src/core/CMakeLists.txt): the AVX-512
-// object takes 8 particles (24 doubles of each Vec3 array) per iteration; the SSE2 and AVX2
-// objects run the particle loop as written. Chosen with the pair kernel (GRAINLAB_SIMD; "off",
+// object takes 8 particles (24 doubles of each Vec3 array) per iteration, the AVX2 object 4
+// (12 doubles); the SSE2 object runs the particle loop as written. Chosen with the pair kernel (GRAINLAB_SIMD; "off",
 // which turns the pair kernel off, keeps the SSE2 passes: the same arithmetic). Plain data only,
 // as core/pair_kernel_simd.hpp.
 #pragma once
