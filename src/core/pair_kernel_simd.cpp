@@ -258,7 +258,7 @@ void particle_records(const SimdPairInput& given, long first, long end) {
   const SimdPairInput in = given;
   // velocity_at_step_end / spin_at_step_end: v(t + dt/2) + dt/2 F(t)/m, the same operations
   const double half_dt = 0.5 * in.time_step;
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
   // A particle's Vec3s as 4-double vectors, the fourth value the next particle's x; its record in
   // four overlapping stores in order, each fourth value overwritten by the next store. The last
   // particle of the range loads and stores only its own values (masked): the next record may be
@@ -280,6 +280,7 @@ void particle_records(const SimdPairInput& given, long first, long end) {
     return x;
   };
   const auto store4 = [](double* p, vd4 x) { __builtin_memcpy(p, &x, sizeof x); };
+#if defined(__AVX512F__)
   const auto masked_load3 = [](const double* p) {
     const vd x = reinterpret_cast<vd>(_mm512_maskz_loadu_pd(0x07, p));
     return __builtin_shufflevector(x, x, 0, 1, 2, 3);
@@ -288,6 +289,15 @@ void particle_records(const SimdPairInput& given, long first, long end) {
     _mm512_mask_storeu_pd(
         p, 0x07, reinterpret_cast<__m512d>(__builtin_shufflevector(x, x, 0, 1, 2, 3, 0, 1, 2, 3)));
   };
+#else
+  const __m256i first_three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  const auto masked_load3 = [&](const double* p) {
+    return reinterpret_cast<vd4>(_mm256_maskload_pd(p, first_three));
+  };
+  const auto masked_store3 = [&](double* p, vd4 x) {
+    _mm256_maskstore_pd(p, first_three, reinterpret_cast<__m256d>(x));
+  };
+#endif
   if (end <= first) return;
   for (long i = first; i < end - 1; ++i) record_one(i, load4, store4);
   record_one(end - 1, masked_load3, masked_store3);
