@@ -12,6 +12,8 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+
 #include "contact/pair_params.hpp"
 
 #ifndef GRAINLAB_SIMD_NS
@@ -30,22 +32,40 @@ namespace {
 // (after the lane primitives it uses)
 #include "core/contact_law_lanes.hpp"  // NOLINT(build/include): likewise, after simd_lanes.hpp
 
-// Touching contacts collected for one pass of the lane arithmetic. The distance test that
-// selects them already gave d = x_j - x_i, |d|^2 and r_i + r_j.
+// How many batches of touching contacts the distance pass collects before the lane arithmetic
+// runs on them. With 4 lanes (AVX2) a batch's law is some 970 instructions, more than the
+// reorder buffer holds, and the distance pass's branch that ends a batch is taken at random
+// (it depends on which entries touch): collecting 8 batches first runs their laws back to back
+// and takes that branch once in 8 (docs/performance.md sec. 50). The AVX-512 object, measured
+// on hosts this change was not, keeps one batch.
+constexpr int batches_per_pass = lanes == 4 ? 8 : 1;
+constexpr int batch_capacity = batches_per_pass * lanes;
+
+// Touching contacts collected for the lane arithmetic, in entry order, `lanes` at a time from
+// the start. The distance test that selects them already gave d = x_j - x_i, |d|^2 and
+// r_i + r_j.
 struct Batch {
-  alignas(64) double dx[lanes], dy[lanes], dz[lanes], dist2[lanes], reach[lanes], ri[lanes],
-      rj[lanes];
-  uint32_t i[lanes], j[lanes], e[lanes];
-  int count = 0;
+  alignas(64) double dx[batch_capacity], dy[batch_capacity], dz[batch_capacity],
+      dist2[batch_capacity], reach[batch_capacity], ri[batch_capacity], rj[batch_capacity];
+  uint32_t i[batch_capacity], j[batch_capacity], e[batch_capacity];
 };
 
-// Runs the contact law on the batch's contacts and stores each result, except for contacts that
-// may have begun in this step, whose entries go to `deferred`. Returns the batch's largest
-// overlap fraction.
-double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long& deferred_count) {
-  // Unused lanes repeat the last contact: valid numbers, never stored.
-  for (int l = b.count; l < lanes; ++l) {
-    const int last = b.count - 1;
+// Runs the contact law on the `count` (1 to lanes) contacts of the batch from `first` on and
+// stores each result, except for contacts that may have begun in this step, whose entries go to
+// `deferred`. Returns their largest overlap fraction.
+double process_batch(const SimdPairInput& in, Batch& whole, int first, int count,
+                     uint32_t* deferred, long& deferred_count) {
+  // the batch's lanes as arrays from `first` on
+  struct Lanes {
+    double *dx, *dy, *dz, *dist2, *reach, *ri, *rj;
+    uint32_t *i, *j, *e;
+  } b{whole.dx + first,    whole.dy + first, whole.dz + first, whole.dist2 + first,
+      whole.reach + first, whole.ri + first, whole.rj + first, whole.i + first,
+      whole.j + first,     whole.e + first};
+  // Unused lanes repeat the last contact: valid numbers, never stored. (Only the pass's last
+  // batch has any, and it is the last in the arrays: a lane past it is free.)
+  for (int l = count; l < lanes; ++l) {
+    const int last = count - 1;
     b.dx[l] = b.dx[last], b.dy[l] = b.dy[last], b.dz[l] = b.dz[last];
     b.dist2[l] = b.dist2[last], b.reach[l] = b.reach[last];
     b.ri[l] = b.ri[last], b.rj[l] = b.rj[last];
@@ -92,7 +112,7 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
   vmask begun{};
   if (drifted) {
     const vd growth_bound = overlap_increment + in.curvature_bound * inverse_dist;
-    const unsigned used = (1u << b.count) - 1u;
+    const unsigned used = (1u << count) - 1u;
     if ((~lane_bits(overlap > growth_bound + growth_bound) & used) != 0) {
       const V3 s = drift * dv;
       const vd s_n = dot(s, n);
@@ -128,10 +148,10 @@ double process_batch(const SimdPairInput& in, Batch& b, uint32_t* deferred, long
 
   // Which lanes to store: the batch's contacts, less those handed back to the scalar law (as
   // mask bits, without a branch per lane).
-  const auto [store, handed_back] = choose_lanes(b.count, drifted, begun);
+  const auto [store, handed_back] = choose_lanes(count, drifted, begun);
   for (unsigned h = handed_back; h != 0; h &= h - 1)
     deferred[deferred_count++] = b.e[__builtin_ctz(h)];
-  const double max_fraction = largest_ordered(fraction, (1u << b.count) - 1u);
+  const double max_fraction = largest_ordered(fraction, (1u << count) - 1u);
   // The results, one vector per value, transposed to one 64-byte PairResult per lane and stored
   // whole (a line each, where a scatter per value would write 8 values across 8 lines).
   static_assert(pair_result_size == 8);
@@ -235,16 +255,18 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     b.ri[l] = r_i, b.rj[l] = r_j;
     b.i[l] = i, b.j[l] = j, b.e[l] = e;
     count += touching;
-    if (count == lanes) {
-      b.count = lanes;
-      const double m = process_batch(in, b, deferred, deferred_count);
-      if (max_fraction < m) max_fraction = m;
+    if (count == batch_capacity) {
+      for (int first = 0; first < batch_capacity; first += lanes) {
+        const double m = process_batch(in, b, first, lanes, deferred, deferred_count);
+        if (max_fraction < m) max_fraction = m;
+      }
       count = 0;
     }
   }
-  if (count > 0) {
-    b.count = count;
-    const double m = process_batch(in, b, deferred, deferred_count);
+  // the rest: full batches, then the last one's `count % lanes` contacts
+  for (int first = 0; first < count; first += lanes) {
+    const double m =
+        process_batch(in, b, first, std::min(lanes, count - first), deferred, deferred_count);
     if (max_fraction < m) max_fraction = m;
   }
   return max_fraction;
