@@ -216,6 +216,16 @@ GRAINLAB_LANES_INLINE V3 load_lanes3(const double* base, const LaneIndex& x) {
   return {__builtin_shufflevector(xy0, xy1, 0, 1, 2, 3, 8, 9, 10, 11),
           __builtin_shufflevector(xy0, xy1, 4, 5, 6, 7, 12, 13, 14, 15),
           __builtin_shufflevector(z0, z1, 0, 1, 2, 3, 8, 9, 10, 11)};
+#elif defined(__AVX2__) && GRAINLAB_LANES == 4
+  // Each lane's (x, y, z) in one masked load (the fourth value is not read), then a 4 x 4
+  // transpose: 4 loads and 8 shuffles in place of three 4-value gathers.
+  const __m256i first_three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  vd4 row[4], value[4];
+#pragma GCC unroll 4
+  for (int l = 0; l < 4; ++l)
+    row[l] = reinterpret_cast<vd4>(_mm256_maskload_pd(base + size_t{x.index[l]} * 3, first_three));
+  transpose4(row, value);
+  return {value[0], value[1], value[2]};
 #else
   return {load_lanes(base, x, 3, 0), load_lanes(base, x, 3, 1), load_lanes(base, x, 3, 2)};
 #endif
@@ -379,6 +389,19 @@ GRAINLAB_LANES_INLINE void store_lanes3(double* base, const uint32_t* index, con
     const uintptr_t at = reinterpret_cast<uintptr_t>(base + size_t{index[2 * k + 1]} * 3) - 32;
     _mm512_mask_storeu_pd(reinterpret_cast<double*>(at), second, pair);
   }
+#elif defined(__AVX2__) && GRAINLAB_LANES == 4
+  // The inverse of load_lanes3: a 4 x 4 transpose gives each lane's (x, y, z, 0), stored as its
+  // first two values and its third.
+  const vd4 value[4] = {v.x, v.y, v.z, vd4{}};
+  vd4 row[4];
+  transpose4(value, row);
+#pragma GCC unroll 4
+  for (int l = 0; l < 4; ++l)
+    if (store >> l & 1u) {
+      double* out = base + size_t{index[l]} * 3;
+      _mm_storeu_pd(out, _mm256_castpd256_pd128(reinterpret_cast<__m256d>(row[l])));
+      _mm_store_sd(out + 2, _mm256_extractf128_pd(reinterpret_cast<__m256d>(row[l]), 1));
+    }
 #else
   for (int l = 0; l < lanes; ++l)
     if (store >> l & 1u) store_lane3(base, index[l], v, l);
