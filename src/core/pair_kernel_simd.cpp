@@ -42,11 +42,12 @@ constexpr int batches_per_pass = lanes == 4 ? 8 : 1;
 constexpr int batch_capacity = batches_per_pass * lanes;
 
 // Touching contacts collected for the lane arithmetic, in entry order, `lanes` at a time from
-// the start. The distance test that selects them already gave d = x_j - x_i, |d|^2 and
-// r_i + r_j.
+// the start. The distance test that selects them already gave d = x_j - x_i and the radii;
+// the lanes compute |d|^2 and r_i + r_j again, by the same operations (two stores fewer per
+// entry, in a pass bound by its stores: docs/performance.md sec. 50).
 struct Batch {
-  alignas(64) double dx[batch_capacity], dy[batch_capacity], dz[batch_capacity],
-      dist2[batch_capacity], reach[batch_capacity], ri[batch_capacity], rj[batch_capacity];
+  alignas(64) double dx[batch_capacity], dy[batch_capacity], dz[batch_capacity], ri[batch_capacity],
+      rj[batch_capacity];
   uint32_t i[batch_capacity], j[batch_capacity], e[batch_capacity];
 };
 
@@ -57,29 +58,27 @@ double process_batch(const SimdPairInput& in, Batch& whole, int first, int count
                      uint32_t* deferred, long& deferred_count) {
   // the batch's lanes as arrays from `first` on
   struct Lanes {
-    double *dx, *dy, *dz, *dist2, *reach, *ri, *rj;
+    double *dx, *dy, *dz, *ri, *rj;
     uint32_t *i, *j, *e;
-  } b{whole.dx + first,    whole.dy + first, whole.dz + first, whole.dist2 + first,
-      whole.reach + first, whole.ri + first, whole.rj + first, whole.i + first,
-      whole.j + first,     whole.e + first};
+  } b{whole.dx + first, whole.dy + first, whole.dz + first, whole.ri + first,
+      whole.rj + first, whole.i + first,  whole.j + first,  whole.e + first};
   // Unused lanes repeat the last contact: valid numbers, never stored. (Only the pass's last
   // batch has any, and it is the last in the arrays: a lane past it is free.)
   for (int l = count; l < lanes; ++l) {
     const int last = count - 1;
     b.dx[l] = b.dx[last], b.dy[l] = b.dy[last], b.dz[l] = b.dz[last];
-    b.dist2[l] = b.dist2[last], b.reach[l] = b.reach[last];
     b.ri[l] = b.ri[last], b.rj[l] = b.rj[last];
     b.i[l] = b.i[last], b.j[l] = b.j[last], b.e[l] = b.e[last];
   }
-  vd dx, dy, dz, dist2, reach, ri, rj;
+  vd dx, dy, dz, ri, rj;
   __builtin_memcpy(&dx, b.dx, sizeof dx);
   __builtin_memcpy(&dy, b.dy, sizeof dy);
   __builtin_memcpy(&dz, b.dz, sizeof dz);
-  __builtin_memcpy(&dist2, b.dist2, sizeof dist2);
-  __builtin_memcpy(&reach, b.reach, sizeof reach);
   __builtin_memcpy(&ri, b.ri, sizeof ri);
   __builtin_memcpy(&rj, b.rj, sizeof rj);
   const double drift = in.drift;
+  // as the distance pass computed them
+  const vd dist2 = dx * dx + dy * dy + dz * dz, reach = ri + rj;
 
   // pair_entry: normal, overlap and the levers (contact point halfway through the overlap)
   const vd dist = lane_sqrt(dist2);
@@ -245,13 +244,22 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
       return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
                                        (apart & ~to_scratch));
     };
+#if GRAINLAB_LANES == 8
     using result_line = double __attribute__((vector_size(pair_result_size * sizeof(double))));
     const result_line zero{};
     __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
+#else
+    // (two 32-byte stores: GCC splits the 64-byte vector into four 16-byte ones here, and the
+    // lines' stores fill the store queue, docs/performance.md sec. 50)
+    double* const line = destination(result, pair_result_size);
+    const vd4 zero{};
+    __builtin_memcpy(line, &zero, sizeof zero);
+    __builtin_memcpy(line + 4, &zero, sizeof zero);
+#endif
     store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
     // (the count in a register: the batch's own count is set only for the lanes)
     const int l = count;
-    b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz, b.dist2[l] = dist2, b.reach[l] = reach;
+    b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz;
     b.ri[l] = r_i, b.rj[l] = r_j;
     b.i[l] = i, b.j[l] = j, b.e[l] = e;
     count += touching;
