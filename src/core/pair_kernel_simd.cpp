@@ -13,6 +13,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 
 #include "contact/pair_params.hpp"
 
@@ -45,10 +46,11 @@ constexpr int batch_capacity = batches_per_pass * lanes;
 // the start. The distance test that selects them already gave d = x_j - x_i and the radii;
 // the lanes compute |d|^2 and r_i + r_j again, by the same operations (two stores fewer per
 // entry, in a pass bound by its stores: docs/performance.md sec. 50).
+// (lanes - 1 values of room past the capacity: the vector distance pass stores whole vectors)
+constexpr int batch_room = batch_capacity + lanes;
 struct Batch {
-  alignas(64) double dx[batch_capacity], dy[batch_capacity], dz[batch_capacity], ri[batch_capacity],
-      rj[batch_capacity];
-  uint32_t i[batch_capacity], j[batch_capacity], e[batch_capacity];
+  alignas(64) double dx[batch_room], dy[batch_room], dz[batch_room], ri[batch_room], rj[batch_room];
+  uint32_t i[batch_room], j[batch_room], e[batch_room];
 };
 
 // Runs the contact law on the `count` (1 to lanes) contacts of the batch from `first` on and
@@ -207,36 +209,25 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
   // each): the entry's first particle comes from the owner array.
   const uint32_t* const owner = in.owner;
   const uint32_t first_entry = row_start[first_row], end_entry = row_start[end_row];
-  for (uint32_t e = first_entry; e < end_entry; ++e) {
-    // Ask the caches for what the entries some way ahead will use (docs/performance.md sec. 26):
-    // their result lines and springs, written or read and written in this pass, and the
-    // partner's velocity record (its two lines), which the lanes read. A partner lies up to one
-    // layer of cells further on in the particle order: in a large packing (88,400 beads: about
-    // 2,000 beads a layer) the streams of a layer's entries evict its record from the L2 before
-    // the lanes reach it, and the hardware's prefetchers, which follow streams, do not fetch it.
-    // In a small one everything is in the caches and the prefetch is only more instructions.
-    if constexpr (Prefetch) {
-      const uint32_t ahead = end_entry - e > prefetch_distance ? e + prefetch_distance : e;
-      __builtin_prefetch(result + size_t{ahead} * pair_result_size, 1);
-      __builtin_prefetch(sliding_spring + size_t{ahead} * 3, 1);
-      const double* record = in.particle_record + size_t{partner[ahead]} * particle_record_size;
-      __builtin_prefetch(record, 0);
-      __builtin_prefetch(record + 8, 0);
-    }
-    const uint32_t i = owner[e];
-    const double* x_i = position + size_t{i} * 3;
-    const double r_i = radius[i];
-    const uint32_t j = partner[e];
-    const double* x_j = position + size_t{j} * 3;
-    const double r_j = radius[j];
-    const double dx = x_j[0] - x_i[0], dy = x_j[1] - x_i[1], dz = x_j[2] - x_i[2];
-    const double reach = r_i + r_j;
-    const double dist2 = dx * dx + dy * dy + dz * dz;
-    // No branch on touching, which is unpredictable in a packing: an entry apart gets its
-    // zero force written here, a touching one writes the same zeros to a scratch record
-    // instead; every entry is offered to the batch, and only touching ones advance its count.
-    const bool touching = !(dist2 >= reach * reach);  // as the scalar test (NaN: touching)
-    // (the destination is chosen by masking addresses: with a select GCC emits a branch)
+  // Ask the caches for what the entries some way ahead will use (docs/performance.md sec. 26):
+  // their result lines and springs, written or read and written in this pass, and the partner's
+  // velocity record (its two lines), which the lanes read. A partner lies up to one layer of
+  // cells further on in the particle order: in a large packing (88,400 beads: about 2,000 beads a
+  // layer) the streams of a layer's entries evict its record from the L2 before the lanes reach
+  // it, and the hardware's prefetchers, which follow streams, do not fetch it. In a small one
+  // everything is in the caches and the prefetch is only more instructions.
+  const auto prefetch = [&](uint32_t e) {
+    const uint32_t ahead = end_entry - e > prefetch_distance ? e + prefetch_distance : e;
+    __builtin_prefetch(result + size_t{ahead} * pair_result_size, 1);
+    __builtin_prefetch(sliding_spring + size_t{ahead} * 3, 1);
+    const double* record = in.particle_record + size_t{partner[ahead]} * particle_record_size;
+    __builtin_prefetch(record, 0);
+    __builtin_prefetch(record + 8, 0);
+  };
+  // No branch on touching, which is unpredictable in a packing: an entry apart gets its zero
+  // force and spring written here, a touching one writes the same zeros to a scratch record
+  // instead. (The destination is chosen by masking addresses: with a select GCC emits a branch.)
+  const auto write_zeros = [&](uint32_t e, bool touching) {
     uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
     asm("" : "+r"(to_scratch));
     const auto destination = [&](double* field, size_t stride) {
@@ -257,19 +248,112 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     __builtin_memcpy(line + 4, &zero, sizeof zero);
 #endif
     store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
-    // (the count in a register: the batch's own count is set only for the lanes)
+  };
+  // Runs the law on the collected batches once `count` reaches the capacity; a part batch stays
+  // (moved to the front), so that the batches are the touching entries `lanes` at a time in
+  // entry order however the pass collects them.
+  const auto run_full_batches = [&] {
+    const int full = count - count % lanes;
+    for (int first = 0; first < full; first += lanes) {
+      const double m = process_batch(in, b, first, lanes, deferred, deferred_count);
+      if (max_fraction < m) max_fraction = m;
+    }
+    for (int l = 0; l < count - full; ++l) {
+      b.dx[l] = b.dx[full + l], b.dy[l] = b.dy[full + l], b.dz[l] = b.dz[full + l];
+      b.ri[l] = b.ri[full + l], b.rj[l] = b.rj[full + l];
+      b.i[l] = b.i[full + l], b.j[l] = b.j[full + l], b.e[l] = b.e[full + l];
+    }
+    count -= full;
+  };
+  uint32_t e = first_entry;
+#if defined(__AVX2__) && GRAINLAB_LANES == 4
+  // Four entries at a time: each particle's position by one masked load and the four as a 4 x 4
+  // transpose (load_lanes3; gather instructions measured slower here), the distance test on the
+  // lanes (the same operations as the loop below, so the same decisions), and the touching
+  // entries packed to the front of each vector by a permutation chosen by the lanes' bits and
+  // stored at the batch's count: 5 vector and 3 half-vector stores for 4 entries in place of 8
+  // stores for each (docs/performance.md sec. 50).
+  {
+    // pack[bits]: the 32-bit index pairs that move the lanes set in `bits` to the front, in order
+    alignas(32) static constexpr auto pack = [] {
+      std::array<std::array<int32_t, 8>, 16> t{};
+      for (unsigned bits = 0; bits < 16; ++bits) {
+        int n = 0;
+        for (int l = 0; l < 4; ++l)
+          if (bits >> l & 1u) t[bits][2 * n] = 2 * l, t[bits][2 * n + 1] = 2 * l + 1, ++n;
+      }
+      return t;
+    }();
+    const auto pack_pd = [](__m256d x, __m256i p) {
+      return _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(x), p));
+    };
+    // (the 32-bit lanes 0, 2, 4, 6 of a pair permutation, halved, pack 4 x int32)
+    const __m256i halve = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
+    for (; end_entry - e >= 4; e += 4) {
+      if constexpr (Prefetch)
+        for (uint32_t k = 0; k < 4; ++k) prefetch(e + k);
+      const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(owner + e));
+      const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(partner + e));
+      const uint32_t* const oi = owner + e;
+      const uint32_t* const pj = partner + e;
+      const __m256d r_i =
+          _mm256_setr_pd(radius[oi[0]], radius[oi[1]], radius[oi[2]], radius[oi[3]]);
+      const __m256d r_j =
+          _mm256_setr_pd(radius[pj[0]], radius[pj[1]], radius[pj[2]], radius[pj[3]]);
+      const V3 x_i = load_lanes3(position, lane_index(oi)),
+               x_j = load_lanes3(position, lane_index(pj));
+      const __m256d dx = _mm256_sub_pd(x_j.x, x_i.x);
+      const __m256d dy = _mm256_sub_pd(x_j.y, x_i.y);
+      const __m256d dz = _mm256_sub_pd(x_j.z, x_i.z);
+      const __m256d reach = _mm256_add_pd(r_i, r_j);
+      const __m256d dist2 = _mm256_add_pd(
+          _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+      // as the scalar test: touching unless dist2 >= reach^2 (NaN: touching)
+      const auto bits = static_cast<unsigned>(
+          _mm256_movemask_pd(_mm256_cmp_pd(dist2, _mm256_mul_pd(reach, reach), _CMP_NGE_UQ)));
+      for (uint32_t k = 0; k < 4; ++k) write_zeros(e + k, bits >> k & 1u);
+      const __m256i p = _mm256_load_si256(reinterpret_cast<const __m256i*>(pack[bits].data()));
+      const __m256i p4 = _mm256_permutevar8x32_epi32(p, halve);  // 2 l for each packed lane
+      const __m256i q = _mm256_srli_epi32(p4, 1);                // l for each packed lane
+      const auto pack_epi32 = [&](__m128i x) {
+        return _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(x), q));
+      };
+      _mm256_storeu_pd(b.dx + count, pack_pd(dx, p));
+      _mm256_storeu_pd(b.dy + count, pack_pd(dy, p));
+      _mm256_storeu_pd(b.dz + count, pack_pd(dz, p));
+      _mm256_storeu_pd(b.ri + count, pack_pd(r_i, p));
+      _mm256_storeu_pd(b.rj + count, pack_pd(r_j, p));
+      const __m128i entry =
+          _mm_add_epi32(_mm_set1_epi32(static_cast<int>(e)), _mm_setr_epi32(0, 1, 2, 3));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.i + count), pack_epi32(i));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.j + count), pack_epi32(j));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.e + count), pack_epi32(entry));
+      count += __builtin_popcount(bits);
+      if (count >= batch_capacity) run_full_batches();
+    }
+  }
+#endif
+  for (; e < end_entry; ++e) {
+    if constexpr (Prefetch) prefetch(e);
+    const uint32_t i = owner[e];
+    const double* x_i = position + size_t{i} * 3;
+    const double r_i = radius[i];
+    const uint32_t j = partner[e];
+    const double* x_j = position + size_t{j} * 3;
+    const double r_j = radius[j];
+    const double dx = x_j[0] - x_i[0], dy = x_j[1] - x_i[1], dz = x_j[2] - x_i[2];
+    const double reach = r_i + r_j;
+    const double dist2 = dx * dx + dy * dy + dz * dz;
+    const bool touching = !(dist2 >= reach * reach);  // as the scalar test (NaN: touching)
+    write_zeros(e, touching);
+    // every entry is offered to the batch, and only touching ones advance its count (the count
+    // in a register)
     const int l = count;
     b.dx[l] = dx, b.dy[l] = dy, b.dz[l] = dz;
     b.ri[l] = r_i, b.rj[l] = r_j;
     b.i[l] = i, b.j[l] = j, b.e[l] = e;
     count += touching;
-    if (count == batch_capacity) {
-      for (int first = 0; first < batch_capacity; first += lanes) {
-        const double m = process_batch(in, b, first, lanes, deferred, deferred_count);
-        if (max_fraction < m) max_fraction = m;
-      }
-      count = 0;
-    }
+    if (count == batch_capacity) run_full_batches();
   }
   // the rest: full batches, then the last one's `count % lanes` contacts
   for (int first = 0; first < count; first += lanes) {
