@@ -312,6 +312,7 @@ GRAINLAB_LANES_INLINE RecordHead load_record_head(const double* record, const ui
 #elif GRAINLAB_LANES == 4
   // values 0..3 and 4..7 of each lane, each 4 x 4 block transposed
   vd4 low[4], high[4], v[4], w[4];  // v: values 0..3, w: values 4..7
+#pragma GCC unroll 4  // (a loop would copy the rows through the stack)
   for (int l = 0; l < 4; ++l) {
     const double* r = record + size_t{index[l]} * particle_record_size;
     __builtin_memcpy(&low[l], r, sizeof low[l]);
@@ -336,6 +337,7 @@ struct RecordTail {  // values 8..11
 GRAINLAB_LANES_INLINE RecordTail load_record_tail(const double* record, const uint32_t* index) {
 #if GRAINLAB_LANES == 4
   vd4 q[4], value[4];  // q[l]: values 8..11 of lane l
+#pragma GCC unroll 4   // (a loop would copy the rows through the stack)
   for (int l = 0; l < 4; ++l)
     __builtin_memcpy(&q[l], record + size_t{index[l]} * particle_record_size + 8, sizeof q[l]);
   transpose4(q, value);
