@@ -227,6 +227,7 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
   // No branch on touching, which is unpredictable in a packing: an entry apart gets its zero
   // force and spring written here, a touching one writes the same zeros to a scratch record
   // instead. (The destination is chosen by masking addresses: with a select GCC emits a branch.)
+  // With 4 lanes the result lines are written whatever the test says, below.
   const auto write_zeros = [&](uint32_t e, bool touching) {
     uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
     asm("" : "+r"(to_scratch));
@@ -240,9 +241,11 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     const result_line zero{};
     __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
 #else
-    // (two 32-byte stores: GCC splits the 64-byte vector into four 16-byte ones here, and the
-    // lines' stores fill the store queue, docs/performance.md sec. 50)
-    double* const line = destination(result, pair_result_size);
+    // Every entry's result line, touching or not (the lanes or the scalar law write a touching
+    // one's afterwards): the stores wait for no distance test, which their masked address made
+    // them do, the hottest spot of the pass (docs/performance.md sec. 50). As two 32-byte stores:
+    // GCC splits the 64-byte vector into four 16-byte ones here.
+    double* const line = result + size_t{e} * pair_result_size;
     const vd4 zero{};
     __builtin_memcpy(line, &zero, sizeof zero);
     __builtin_memcpy(line + 4, &zero, sizeof zero);
