@@ -34,7 +34,7 @@ namespace {
 #include "core/contact_law_lanes.hpp"  // NOLINT(build/include): likewise, after simd_lanes.hpp
 
 // How many batches of touching contacts the distance pass collects before the lane arithmetic
-// runs on them. With 4 lanes (AVX2) a batch's law is some 970 instructions, more than the
+// runs on them. With 4 lanes (AVX2) a batch's law is some 860 instructions, more than the
 // reorder buffer holds, and the distance pass's branch that ends a batch is taken at random
 // (it depends on which entries touch): collecting 8 batches first runs their laws back to back
 // and takes that branch once in 8 (docs/performance.md sec. 50). The AVX-512 object, measured
@@ -46,7 +46,8 @@ constexpr int batch_capacity = batches_per_pass * lanes;
 // the start. The distance test that selects them already gave d = x_j - x_i and the radii;
 // the lanes compute |d|^2 and r_i + r_j again, by the same operations (two stores fewer per
 // entry, in a pass bound by its stores: docs/performance.md sec. 50).
-// (lanes - 1 values of room past the capacity: the vector distance pass stores whole vectors)
+// (`lanes` values of room past the capacity: the AVX2 distance pass stores whole vectors at
+// the count, which is below the capacity)
 constexpr int batch_room = batch_capacity + lanes;
 struct Batch {
   alignas(64) double dx[batch_room], dy[batch_room], dz[batch_room], ri[batch_room], rj[batch_room];
@@ -290,7 +291,7 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     const auto pack_pd = [](__m256d x, __m256i p) {
       return _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(x), p));
     };
-    // (the 32-bit lanes 0, 2, 4, 6 of a pair permutation, halved, pack 4 x int32)
+    // (the even 32-bit lanes of a pair permutation, halved, give the permutation of 4 x int32)
     const __m256i halve = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
     for (; end_entry - e >= 4; e += 4) {
       if constexpr (Prefetch)
