@@ -116,8 +116,11 @@ struct Group {
 GRAINLAB_PASS_INLINE Group load_group(const double* p) {
   return {{load(p), load(p + 8), load(p + 16)}};
 }
+// (a vector at a time, as in the AVX2 object below)
 GRAINLAB_PASS_INLINE void store_group(double* p, const Group& g) {
-  __builtin_memcpy(p, g.a, sizeof g.a);
+  __builtin_memcpy(p, &g.a[0], sizeof g.a[0]);
+  __builtin_memcpy(p + 8, &g.a[1], sizeof g.a[1]);
+  __builtin_memcpy(p + 16, &g.a[2], sizeof g.a[2]);
 }
 // The 8 particles' values s in the places of their x, y and z.
 GRAINLAB_PASS_INLINE Group spread(v8 s) {
