@@ -490,58 +490,21 @@ GRAINLAB_PASS_INLINE void gather_particle_lanes(const GatherInput& in, long i, v
 // gather_flat of the AVX-512 object on the two vectors: the block's row entries in entry order,
 // then its column entries, then its wall entries, each added to its particle's sums (a
 // particle's entries are contiguous in each walk and in the order its own loops take them).
-//
-// The row and column walks keep the sums of the particle they are on in registers: at each
-// entry they write them to its slot and, where the walk moves on to the next particle, take
-// that one's instead, without a branch (a select; the slot read where the walk stays is a spare
-// one, so that the read waits for no store of the sums being carried). Each entry's addition
-// then waits for the one before it by a select and an add, not by a store and a load of the
-// same slot (docs/performance.md sec. 50). The same additions in the same order.
-template <class Owner, class Add>
-GRAINLAB_PASS_INLINE void walk_carrying_sums(Sums4* sum, uint32_t begin, uint32_t end,
-                                             Owner owner_of, Add add) {
-  if (begin == end) return;
-  const Sums4 spare{};
-  long current = owner_of(begin);
-  Sums4 s = sum[current];
-  for (uint32_t q = begin; q < end; ++q) {
-    const long k = owner_of(q);
-    const bool stays = k == current;
-    sum[current] = s;  // (where the walk moves on, the particle's sums are complete)
-    const Sums4* from = stays ? &spare : &sum[k];
-    asm("" : "+r"(from));  // (keeps the select a conditional move)
-    const Sums4 next = *from;
-    const __m256d carry = _mm256_castsi256_pd(_mm256_set1_epi64x(-static_cast<long long>(stays)));
-    s.force = reinterpret_cast<v4>(_mm256_blendv_pd(reinterpret_cast<__m256d>(next.force),
-                                                    reinterpret_cast<__m256d>(s.force), carry));
-    s.torque = reinterpret_cast<v4>(_mm256_blendv_pd(reinterpret_cast<__m256d>(next.torque),
-                                                     reinterpret_cast<__m256d>(s.torque), carry));
-    current = k;
-    add(s, q, k);
-  }
-  sum[current] = s;
-}
 GRAINLAB_PASS_INLINE void gather_flat(const GatherInput& in, long first, long end, v4 gravity) {
   alignas(32) Sums4 sum[gather_flat_block];
   const long count = end - first;
   for (long k = 0; k < count; ++k) sum[k] = weight(in, first + k, gravity);
   const double* const result = in.result;
   const double* const radius = in.radius;
-  const uint32_t* const row_owner = in.row_owner;
-  const uint32_t* const col_pair = in.col_pair;
-  const uint32_t* const partner = in.partner;
-  walk_carrying_sums(
-      sum, in.row_start[first], in.row_start[end],
-      [&](uint32_t e) { return long{row_owner[e]} - first; },
-      [&](Sums4& s, uint32_t e, long k) {
-        add_row_entry(s, result + 8 * size_t{e}, radius[first + k]);
-      });
-  walk_carrying_sums(
-      sum, in.col_start[first], in.col_start[end],
-      [&](uint32_t q) { return long{partner[col_pair[q]]} - first; },
-      [&](Sums4& s, uint32_t q, long k) {
-        add_column_entry(s, result + 8 * size_t{col_pair[q]}, radius[first + k]);
-      });
+  for (uint32_t e = in.row_start[first], row_end = in.row_start[end]; e < row_end; ++e) {
+    const long k = in.row_owner[e] - first;
+    add_row_entry(sum[k], result + 8 * size_t{e}, radius[first + k]);
+  }
+  for (uint32_t q = in.col_start[first], col_end = in.col_start[end]; q < col_end; ++q) {
+    const uint32_t e = in.col_pair[q];
+    const long k = in.partner[e] - first;
+    add_column_entry(sum[k], result + 8 * size_t{e}, radius[first + k]);
+  }
   for (uint32_t e = in.wall_row_start[first], wall_end = in.wall_row_start[end]; e < wall_end; ++e)
     add_wall_entry(sum[in.wall_owner[e] - first], in, e);
   for (long k = 0; k < count; ++k) store_sums(in, first + k, sum[k]);
