@@ -34,12 +34,17 @@ namespace {
 #include "core/contact_law_lanes.hpp"  // NOLINT(build/include): likewise, after simd_lanes.hpp
 
 // How many batches of touching contacts the distance pass collects before the lane arithmetic
-// runs on them. With 4 lanes (AVX2) a batch's law is some 860 instructions, more than the
-// reorder buffer holds, and the distance pass's branch that ends a batch is taken at random
-// (it depends on which entries touch): collecting 8 batches first runs their laws back to back
-// and takes that branch once in 8 (docs/performance.md sec. 50). The AVX-512 object, measured
-// on hosts this change was not, keeps one batch.
-constexpr int batches_per_pass = lanes == 4 ? 8 : 1;
+// runs on them. A batch's law is some 860 instructions with 4 lanes (AVX2), more than the reorder
+// buffer holds, and the branch of the distance pass that ends a batch is taken at random (it
+// depends on which entries touch): collecting 8 batches first runs their laws back to back and
+// takes that branch once in 8 (measured with AVX2 on a Zen 3; 1.08-1.14x with AVX-512
+// on a Sapphire Rapids class Xeon, where 4 and 8 measured the same: docs/performance.md sec. 50,
+// 51). The SSE2 object, which has no vector distance pass, keeps one batch.
+#if defined(__AVX512F__) || defined(__AVX2__)
+constexpr int batches_per_pass = 8;
+#else
+constexpr int batches_per_pass = 1;
+#endif
 constexpr int batch_capacity = batches_per_pass * lanes;
 
 // Touching contacts collected for the lane arithmetic, in entry order, `lanes` at a time from
@@ -53,6 +58,8 @@ struct Batch {
   alignas(64) double dx[batch_room], dy[batch_room], dz[batch_room], ri[batch_room], rj[batch_room];
   uint32_t i[batch_room], j[batch_room], e[batch_room];
 };
+
+#include "core/distance_pass_lanes.hpp"  // NOLINT(build/include): part of this file, after Batch
 
 // Runs the contact law on the `count` (1 to lanes) contacts of the batch from `first` on and
 // stores each result, except for contacts that may have begun in this step, whose entries go to
@@ -226,32 +233,33 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     __builtin_prefetch(record + 8, 0);
   };
   // No branch on touching, which is unpredictable in a packing: an entry apart gets its zero
-  // force and spring written here, a touching one writes the same zeros to a scratch record
-  // instead. (The destination is chosen by masking addresses: with a select GCC emits a branch.)
-  // With 4 lanes the result lines are written whatever the test says, below.
-  const auto write_zeros = [&](uint32_t e, bool touching) {
+  // spring written here, a touching one writes the same zeros to a scratch record instead. (The
+  // destination is chosen by masking addresses: with a select GCC emits a branch.)
+  const auto zero_spring = [&](uint32_t e, bool touching) {
     uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
     asm("" : "+r"(to_scratch));
-    const auto destination = [&](double* field, size_t stride) {
-      const auto apart = reinterpret_cast<uintptr_t>(field + stride * e);
-      return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
-                                       (apart & ~to_scratch));
-    };
-#if GRAINLAB_LANES == 8
+    const auto apart = reinterpret_cast<uintptr_t>(sliding_spring + size_t{3} * e);
+    store_zero3(reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
+                                          (apart & ~to_scratch)));  // apart: the spring is forgotten
+  };
+  // The result line's zeros likewise. With AVX2 and AVX-512 every entry's line is zeroed whatever
+  // the test says (the lanes or the scalar law write a touching one's afterwards): the stores
+  // then wait for no distance test, which their masked address made them do, the hottest spot of
+  // the pass (docs/performance.md sec. 50; core/distance_pass_lanes.hpp).
+  const auto write_zeros = [&](uint32_t e, bool touching) {
+#if GRAINLAB_DISTANCE_PASS_LANES
+    zero_result_line(result, e);
+#else
+    uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};
+    asm("" : "+r"(to_scratch));
+    const auto apart = reinterpret_cast<uintptr_t>(result + size_t{pair_result_size} * e);
     using result_line = double __attribute__((vector_size(pair_result_size * sizeof(double))));
     const result_line zero{};
-    __builtin_memcpy(destination(result, pair_result_size), &zero, sizeof zero);
-#else
-    // Every entry's result line, touching or not (the lanes or the scalar law write a touching
-    // one's afterwards): the stores wait for no distance test, which their masked address made
-    // them do, the hottest spot of the pass (docs/performance.md sec. 50). As two 32-byte stores:
-    // GCC splits the 64-byte vector into four 16-byte ones here.
-    double* const line = result + size_t{e} * pair_result_size;
-    const vd4 zero{};
-    __builtin_memcpy(line, &zero, sizeof zero);
-    __builtin_memcpy(line + 4, &zero, sizeof zero);
+    __builtin_memcpy(reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
+                                               (apart & ~to_scratch)),
+                     &zero, sizeof zero);
 #endif
-    store_zero3(destination(sliding_spring, 3));  // apart: the spring is forgotten
+    zero_spring(e, touching);
   };
   // Runs the law on the collected batches once `count` reaches the capacity; a part batch stays
   // (moved to the front), so that the batches are the touching entries `lanes` at a time in
@@ -270,72 +278,9 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     count -= full;
   };
   uint32_t e = first_entry;
-#if defined(__AVX2__) && GRAINLAB_LANES == 4
-  // Four entries at a time: each particle's position by one masked load and the four as a 4 x 4
-  // transpose (load_lanes3; gather instructions measured slower here), the distance test on the
-  // lanes (the same operations as the loop below, so the same decisions), and the touching
-  // entries packed to the front of each vector by a permutation chosen by the lanes' bits and
-  // stored at the batch's count: 5 vector and 3 half-vector stores for 4 entries in place of 8
-  // stores for each (docs/performance.md sec. 50).
-  {
-    // pack[bits]: the 32-bit index pairs that move the lanes set in `bits` to the front, in order
-    alignas(32) static constexpr auto pack = [] {
-      std::array<std::array<int32_t, 8>, 16> t{};
-      for (unsigned bits = 0; bits < 16; ++bits) {
-        int n = 0;
-        for (int l = 0; l < 4; ++l)
-          if (bits >> l & 1u) t[bits][2 * n] = 2 * l, t[bits][2 * n + 1] = 2 * l + 1, ++n;
-      }
-      return t;
-    }();
-    const auto pack_pd = [](__m256d x, __m256i p) {
-      return _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(x), p));
-    };
-    // (the even 32-bit lanes of a pair permutation, halved, give the permutation of 4 x int32)
-    const __m256i halve = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
-    for (; end_entry - e >= 4; e += 4) {
-      if constexpr (Prefetch)
-        for (uint32_t k = 0; k < 4; ++k) prefetch(e + k);
-      const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(owner + e));
-      const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(partner + e));
-      const uint32_t* const oi = owner + e;
-      const uint32_t* const pj = partner + e;
-      const __m256d r_i =
-          _mm256_setr_pd(radius[oi[0]], radius[oi[1]], radius[oi[2]], radius[oi[3]]);
-      const __m256d r_j =
-          _mm256_setr_pd(radius[pj[0]], radius[pj[1]], radius[pj[2]], radius[pj[3]]);
-      const V3 x_i = load_lanes3(position, lane_index(oi)),
-               x_j = load_lanes3(position, lane_index(pj));
-      const __m256d dx = _mm256_sub_pd(x_j.x, x_i.x);
-      const __m256d dy = _mm256_sub_pd(x_j.y, x_i.y);
-      const __m256d dz = _mm256_sub_pd(x_j.z, x_i.z);
-      const __m256d reach = _mm256_add_pd(r_i, r_j);
-      const __m256d dist2 = _mm256_add_pd(
-          _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
-      // as the scalar test: touching unless dist2 >= reach^2 (NaN: touching)
-      const auto bits = static_cast<unsigned>(
-          _mm256_movemask_pd(_mm256_cmp_pd(dist2, _mm256_mul_pd(reach, reach), _CMP_NGE_UQ)));
-      for (uint32_t k = 0; k < 4; ++k) write_zeros(e + k, bits >> k & 1u);
-      const __m256i p = _mm256_load_si256(reinterpret_cast<const __m256i*>(pack[bits].data()));
-      const __m256i p4 = _mm256_permutevar8x32_epi32(p, halve);  // 2 l for each packed lane
-      const __m256i q = _mm256_srli_epi32(p4, 1);                // l for each packed lane
-      const auto pack_epi32 = [&](__m128i x) {
-        return _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(x), q));
-      };
-      _mm256_storeu_pd(b.dx + count, pack_pd(dx, p));
-      _mm256_storeu_pd(b.dy + count, pack_pd(dy, p));
-      _mm256_storeu_pd(b.dz + count, pack_pd(dz, p));
-      _mm256_storeu_pd(b.ri + count, pack_pd(r_i, p));
-      _mm256_storeu_pd(b.rj + count, pack_pd(r_j, p));
-      const __m128i entry =
-          _mm_add_epi32(_mm_set1_epi32(static_cast<int>(e)), _mm_setr_epi32(0, 1, 2, 3));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.i + count), pack_epi32(i));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.j + count), pack_epi32(j));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(b.e + count), pack_epi32(entry));
-      count += __builtin_popcount(bits);
-      if (count >= batch_capacity) run_full_batches();
-    }
-  }
+#if GRAINLAB_DISTANCE_PASS_LANES
+  e = distance_pass_lanes<Prefetch>(in, e, end_entry, b, count, prefetch, zero_spring,
+                                    run_full_batches);
 #endif
   for (; e < end_entry; ++e) {
     if constexpr (Prefetch) prefetch(e);
