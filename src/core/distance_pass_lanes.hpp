@@ -15,8 +15,7 @@
 #error "core/distance_pass_lanes.hpp is part of core/pair_kernel_simd.cpp"
 #endif
 
-#if defined(__AVX512F__) || (defined(__AVX2__) && GRAINLAB_LANES == 4)
-#define GRAINLAB_DISTANCE_PASS_LANES 1
+#if GRAINLAB_DISTANCE_PASS_LANES  // (set by pair_kernel_simd.cpp: AVX2 and AVX-512)
 
 // Zeroes the `pair_result_size` values of entry e's result line.
 GRAINLAB_LANES_INLINE void zero_result_line(double* result, uint32_t e) {
@@ -74,16 +73,15 @@ GRAINLAB_LANES_INLINE uint32_t distance_pass_lanes(const SimdPairInput& in, uint
     const auto pack_index = [&](uint32_t* to, __m256i x) {
       using int16 = int32_t __attribute__((vector_size(64)));
       using int8 = int32_t __attribute__((vector_size(32)));
-      const auto packed = reinterpret_cast<int16>(
-          _mm512_maskz_compress_epi32(touching, _mm512_castsi256_si512(x)));
+      const auto packed =
+          reinterpret_cast<int16>(_mm512_maskz_compress_epi32(touching, _mm512_castsi256_si512(x)));
       // (the low half by a shuffle: GCC 12's _mm512_castsi512_si256 warns of an undefined value)
       const int8 low = __builtin_shufflevector(packed, packed, 0, 1, 2, 3, 4, 5, 6, 7);
       __builtin_memcpy(to, &low, sizeof low);
     };
     pack_index(b.i + count, li.times1);
     pack_index(b.j + count, lj.times1);
-    pack_index(b.e + count,
-               _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(e)), lane_number));
+    pack_index(b.e + count, _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(e)), lane_number));
     count += __builtin_popcount(touching);
     if (count >= batch_capacity) run_full_batches();
   }
@@ -111,20 +109,18 @@ GRAINLAB_LANES_INLINE uint32_t distance_pass_lanes(const SimdPairInput& in, uint
   for (; end_entry - e >= 4; e += 4) {
     if constexpr (Prefetch)
       for (uint32_t k = 0; k < 4; ++k) prefetch(e + k);
-    const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(owner + e));
-    const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(partner + e));
     const uint32_t* const oi = owner + e;
     const uint32_t* const pj = partner + e;
+    const LaneIndex li = lane_index(oi), lj = lane_index(pj);  // (4 x int32 in times1)
     const __m256d r_i = _mm256_setr_pd(radius[oi[0]], radius[oi[1]], radius[oi[2]], radius[oi[3]]);
     const __m256d r_j = _mm256_setr_pd(radius[pj[0]], radius[pj[1]], radius[pj[2]], radius[pj[3]]);
-    const V3 x_i = load_lanes3(position, lane_index(oi)),
-             x_j = load_lanes3(position, lane_index(pj));
+    const V3 x_i = load_lanes3(position, li), x_j = load_lanes3(position, lj);
     const __m256d dx = _mm256_sub_pd(x_j.x, x_i.x);
     const __m256d dy = _mm256_sub_pd(x_j.y, x_i.y);
     const __m256d dz = _mm256_sub_pd(x_j.z, x_i.z);
     const __m256d reach = _mm256_add_pd(r_i, r_j);
-    const __m256d dist2 = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+    const __m256d dist2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)),
+                                        _mm256_mul_pd(dz, dz));
     const auto bits = static_cast<unsigned>(
         _mm256_movemask_pd(_mm256_cmp_pd(dist2, _mm256_mul_pd(reach, reach), _CMP_NGE_UQ)));
     for (uint32_t k = 0; k < 4; ++k) {
@@ -144,8 +140,8 @@ GRAINLAB_LANES_INLINE uint32_t distance_pass_lanes(const SimdPairInput& in, uint
     _mm256_storeu_pd(b.rj + count, pack_pd(r_j, p));
     const __m128i entry =
         _mm_add_epi32(_mm_set1_epi32(static_cast<int>(e)), _mm_setr_epi32(0, 1, 2, 3));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(b.i + count), pack_epi32(i));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(b.j + count), pack_epi32(j));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(b.i + count), pack_epi32(li.times1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(b.j + count), pack_epi32(lj.times1));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(b.e + count), pack_epi32(entry));
     count += __builtin_popcount(bits);
     if (count >= batch_capacity) run_full_batches();

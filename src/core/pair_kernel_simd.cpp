@@ -25,6 +25,13 @@
 #if defined(__AVX2__) && !defined(__AVX512F__)
 #define GRAINLAB_LANES 4
 #endif
+// AVX2 and AVX-512: the distance pass tests a vector of entries at a time
+// (core/distance_pass_lanes.hpp); SSE2: one entry at a time. (AVX-512F implies AVX2.)
+#if defined(__AVX2__)
+#define GRAINLAB_DISTANCE_PASS_LANES 1
+#else
+#define GRAINLAB_DISTANCE_PASS_LANES 0
+#endif
 
 namespace grainlab::GRAINLAB_SIMD_NS {
 namespace {
@@ -40,11 +47,7 @@ namespace {
 // takes that branch once in 8 (measured with AVX2 on a Zen 3; 1.08-1.14x with AVX-512
 // on a Sapphire Rapids class Xeon, where 4 and 8 measured the same: docs/performance.md sec. 50,
 // 51). The SSE2 object, which has no vector distance pass, keeps one batch.
-#if defined(__AVX512F__) || defined(__AVX2__)
-constexpr int batches_per_pass = 8;
-#else
-constexpr int batches_per_pass = 1;
-#endif
+constexpr int batches_per_pass = GRAINLAB_DISTANCE_PASS_LANES ? 8 : 1;
 constexpr int batch_capacity = batches_per_pass * lanes;
 
 // Touching contacts collected for the lane arithmetic, in entry order, `lanes` at a time from
@@ -232,32 +235,30 @@ double rows(const SimdPairInput& in, long first_row, long end_row, uint32_t* def
     __builtin_prefetch(record, 0);
     __builtin_prefetch(record + 8, 0);
   };
-  // No branch on touching, which is unpredictable in a packing: an entry apart gets its zero
-  // spring written here, a touching one writes the same zeros to a scratch record instead. (The
+  // No branch on touching, which is unpredictable in a packing: an entry apart gets its zeros
+  // written in place, a touching one writes the same zeros to a scratch record instead. (The
   // destination is chosen by masking addresses: with a select GCC emits a branch.)
-  const auto zero_spring = [&](uint32_t e, bool touching) {
+  const auto scratch_if_touching = [&](double* apart, bool touching) {
     uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};  // all ones when touching
     asm("" : "+r"(to_scratch));
-    const auto apart = reinterpret_cast<uintptr_t>(sliding_spring + size_t{3} * e);
-    store_zero3(reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
-                                          (apart & ~to_scratch)));  // apart: the spring is forgotten
+    return reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
+                                     (reinterpret_cast<uintptr_t>(apart) & ~to_scratch));
   };
-  // The result line's zeros likewise. With AVX2 and AVX-512 every entry's line is zeroed whatever
-  // the test says (the lanes or the scalar law write a touching one's afterwards): the stores
-  // then wait for no distance test, which their masked address made them do, the hottest spot of
-  // the pass (docs/performance.md sec. 50; core/distance_pass_lanes.hpp).
+  const auto zero_spring = [&](uint32_t e, bool touching) {
+    store_zero3(scratch_if_touching(sliding_spring + size_t{3} * e, touching));  // forgotten
+  };
+  // The result line's zeros. With AVX2 and AVX-512 every entry's line is zeroed whatever the test
+  // says (the lanes or the scalar law write a touching one's afterwards): the stores then wait for
+  // no distance test, which their masked address made them do, the hottest spot of the pass
+  // (docs/performance.md sec. 50; core/distance_pass_lanes.hpp).
   const auto write_zeros = [&](uint32_t e, bool touching) {
 #if GRAINLAB_DISTANCE_PASS_LANES
     zero_result_line(result, e);
 #else
-    uintptr_t to_scratch = uintptr_t{0} - uintptr_t{touching};
-    asm("" : "+r"(to_scratch));
-    const auto apart = reinterpret_cast<uintptr_t>(result + size_t{pair_result_size} * e);
     using result_line = double __attribute__((vector_size(pair_result_size * sizeof(double))));
     const result_line zero{};
-    __builtin_memcpy(reinterpret_cast<double*>((reinterpret_cast<uintptr_t>(scratch) & to_scratch) |
-                                               (apart & ~to_scratch)),
-                     &zero, sizeof zero);
+    __builtin_memcpy(scratch_if_touching(result + size_t{pair_result_size} * e, touching), &zero,
+                     sizeof zero);
 #endif
     zero_spring(e, touching);
   };
