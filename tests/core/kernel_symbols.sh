@@ -4,8 +4,8 @@
 # would be a weak symbol that the linker may keep for the whole program, so that code built for
 # AVX-512 could run on a CPU without it. Each pair kernel object must define exactly two global
 # symbols, its own pair_rows and particle_records; each wall kernel object three, its wall_law,
-# plane_wall_rows and wall_totals; each particle passes object three, its kick_and_drift,
-# half_kick and gather; none any weak ones.
+# plane_wall_rows and wall_totals; each particle passes object two, its kick_and_drift and
+# half_kick; each gather object one, its gather; none any weak ones.
 #   kernel_symbols.sh OBJECT...
 set -euo pipefail
 status=0
@@ -13,7 +13,8 @@ for object in "$@"; do
   case "$(basename "$object")" in
     pair_kernel_simd*) entry_points=(pair_rows particle_records) ;;
     wall_kernel_simd*) entry_points=(wall_law plane_wall_rows wall_totals) ;;
-    particle_passes_simd*) entry_points=(kick_and_drift half_kick gather) ;;
+    particle_passes_simd*) entry_points=(kick_and_drift half_kick) ;;
+    gather_simd*) entry_points=(gather) ;;
     *) echo "$object: not a kernel object" >&2; status=1; continue ;;
   esac
   defined=$(nm --defined-only --extern-only -C "$object" | awk '{ $1 = ""; print substr($0, 2) }')
