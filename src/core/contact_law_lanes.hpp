@@ -87,19 +87,12 @@ GRAINLAB_LANES_INLINE LawResult contact_law(const V3& n, vd overlap, vd overlap_
     const vd cap = k.friction * normal_force;
     const vd magnitude2 = dot(tangential, tangential);
     const vmask slip = magnitude2 > cap * cap;
-    // The cap's square root and two divisions only where some lane slips: they close the law's
-    // longest chain of dependent operations (square root, division, square root, division from
-    // the distance on), which a batch without a sliding contact need not wait for (1.06 to 1.09x
-    // on dense-11k with AVX-512: docs/performance.md sec. 52). A lane that does not slip
-    // keeps what the selects below would keep, so the bits are the scalar law's either way.
-    if (lane_bits(slip) != 0) {
-      const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
-      const V3 slipped_spring = select(
-          sliding_stiffness > 0.0,
-          (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
-      tangential = select(slip, capped, tangential);
-      spring = select(slip, slipped_spring, spring);
-    }
+    const V3 capped = (cap / lane_sqrt(magnitude2)) * tangential;
+    const V3 slipped_spring =
+        select(sliding_stiffness > 0.0,
+               (1.0 / sliding_stiffness) * (capped - sliding_damping * tangential_velocity), V3{});
+    tangential = select(slip, capped, tangential);
+    spring = select(slip, slipped_spring, spring);
   }
   // the force on A and the torque arm n x F_t (each body's torque is its lever times the arm)
   return {tangential - normal_force * n, cross(n, tangential), normal_force, spring};
