@@ -196,7 +196,9 @@ GRAINLAB_PASS_INLINE double raise(double largest, pvec lanes) {
 
 template <bool Check, bool Rebuild, bool Bound>
 void drift_range(const ParticlePassInput& given, long first, long end, DriftTally& tally) {
-  const ParticlePassInput in = given;  // (a local copy: see gather)
+  // (a local copy, as in core/gather_simd.cpp: the compiler cannot tell that the stores below
+  // leave `given` as it is, and would load its pointers again for every particle)
+  const ParticlePassInput in = given;
   const double half = 0.5 * in.time_step;
   long i = first;
 #if defined(__AVX512F__) || defined(__AVX2__)
@@ -242,7 +244,9 @@ void drift_range(const ParticlePassInput& given, long first, long end, DriftTall
 template <bool Next>
 void kick_range(const ParticlePassInput& given, long first, long end, double& max_speed2,
                 double& max_next2) {
-  const ParticlePassInput in = given;  // (a local copy: see gather)
+  // (a local copy, as in core/gather_simd.cpp: the compiler cannot tell that the stores below
+  // leave `given` as it is, and would load its pointers again for every particle)
+  const ParticlePassInput in = given;
   const double half = 0.5 * in.time_step;
   long i = first;
 #if defined(__AVX512F__) || defined(__AVX2__)
