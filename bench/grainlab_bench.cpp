@@ -197,8 +197,8 @@ int main(int argc, char** argv) {
   app.add_option(
          "--gather-walk", gather_walk,
          "automatic | flat | one-by-one: the gather walks each block's entries flat or takes "
-         "the particles one by one (automatic: flat from 10,000 particles a thread; "
-         "Simulation::set_gather_walk, the same results)")
+         "the particles one by one (automatic: the faster by the steps' own times, "
+         "core/gather_walk_trial.hpp; Simulation::set_gather_walk, the same results)")
       ->check(CLI::IsMember({"automatic", "flat", "one-by-one"}));
   app.add_option("--chunks-per-thread", chunks_per_thread,
                  "about this many chunks of each thread's block in the stages of a step "
@@ -265,9 +265,9 @@ int main(int argc, char** argv) {
   const std::string csv_label = label.empty() ? kernel : label + " " + kernel;
   fmt::print("workload {}  N = {}  steps {} (+{} warm-up)  version {}  pair kernel {}\n", name, n,
              steps, warmup, grainlab::version_string, kernel);
-  fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8} {:>7}\n", "threads",
-             "rep", "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle", "state hash",
-             "entries", "sweeps");
+  fmt::print("{:>7} {:>4} {:>14} {:>10} {:>9} {:>9} {:>10} {:>10}  {:16} {:>8} {:>7} {:>7}\n",
+             "threads", "rep", "p-steps/s", "ns/p-step", "rebuilds", "Z", "RSS MB", "B/particle",
+             "state hash", "entries", "sweeps", "flat");
   for (int t : threads) {
     omp_set_num_threads(t);
     for (int r = 0; r < reps; ++r) {
@@ -286,7 +286,8 @@ int main(int argc, char** argv) {
                                                    : grainlab::ChunkQueue::Tail::even);
       sim.advance(warmup);
       sim.time_step_phases(phase_times);
-      const long rebuilds0 = sim.rebuild_count(), sweeps0 = sim.one_sweep_steps();
+      const long rebuilds0 = sim.rebuild_count(), sweeps0 = sim.one_sweep_steps(),
+                 flat0 = sim.flat_gather_steps();
       const auto start = std::chrono::steady_clock::now();
       sim.advance(steps);
       const double seconds =
@@ -301,10 +302,14 @@ int main(int argc, char** argv) {
       const double entries = static_cast<double>(sim.pair_contacts().size()) / n;
       // sweeps: the share of the timed steps run as one sweep (core/one_sweep.cpp)
       const double sweeps = static_cast<double>(sim.one_sweep_steps() - sweeps0) / steps;
+      // flat: the share of the timed steps whose gather walked flat (the automatic walk is
+      // chosen by timing the steps: core/gather_walk_trial.hpp)
+      const double flat = static_cast<double>(sim.flat_gather_steps() - flat0) / steps;
       fmt::print(
           "{:>7} {:>4} {:>14.4g} {:>10.1f} {:>9} {:>9.3f} {:>10.1f} {:>10.0f}  {:016x} {:>8.2f} "
-          "{:>7.3f}\n",
-          t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps);
+          "{:>7.3f} {:>7.3f}\n",
+          t, r, rate, 1e9 / rate, rebuilds, z, rss, rss * 1048576.0 / n, hash, entries, sweeps,
+          flat);
       if (phase_times) print_phase_times(sim.step_phase_times());
       // ms per call of `update`, timed over `count` calls in a row
       const auto ms_each = [](int count, auto&& update) {

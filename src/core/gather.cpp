@@ -5,6 +5,8 @@
 // Compiled with -ffp-contract=off (src/core/CMakeLists.txt): a torque is formed here as lever ×
 // torque arm (core/contact_store.hpp), and unfused it is bit for bit the product the contact law
 // forms, whichever build; a fused multiply-add would round the lever and the sum differently.
+#include <string_view>
+
 #include "core/simulation.hpp"
 
 namespace grainlab {
@@ -80,6 +82,12 @@ void Simulation::gather_particles(IndexBlock b) {
     in.wall_owner = wall_entry_owners_.data();
   }
   particle_passes_.gather(in, b.first, b.end);
+}
+
+// Both walks exist where the kernel runs (its entry owners) and its passes are AVX2 or AVX-512
+// (the SSE2 object ignores the owners).
+bool Simulation::times_gather_walks() const {
+  return uses_pair_kernel() && std::string_view(particle_passes_.name) != "sse2";
 }
 
 // Wall totals, serial in entry order (few entries; deterministic).

@@ -42,6 +42,9 @@ void Simulation::step() {
   const double step_start = timed ? StepPhaseTimes::now() : 0.0;
   double update_seconds = 0.0;
   phase_regions_ = 0.0;
+  // (the automatic gather walk is chosen by the steps' times: core/gather_walk_trial.hpp)
+  const bool walk_timed = gather_walk_ == GatherWalk::automatic;
+  const double walk_start = walk_timed ? StepPhaseTimes::now() : 0.0;
   follow_step_team_limit();  // (the team may change between steps: core/team_limit.hpp)
   for (StepListener* l : listeners_) l->before_step(*this);
   drift_walls();
@@ -75,6 +78,9 @@ void Simulation::step() {
   partition_.update();
   time_ += settings_.time_step;
   ++step_count_;
+  if (flat_gather_) ++flat_gather_steps_;
+  if (walk_timed && times_gather_walks())
+    gather_walk_trial_.step_took(StepPhaseTimes::now() - walk_start);
   check_health();
   for (StepListener* l : listeners_) l->after_step(*this);
   if (timed)

@@ -17,6 +17,7 @@
 #include "contact/pair_table.hpp"
 #include "core/chunk_queue.hpp"
 #include "core/contact_store.hpp"
+#include "core/gather_walk_trial.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/pair_kernel_simd.hpp"
 #include "core/particle_passes_simd.hpp"
@@ -153,18 +154,24 @@ class Simulation {
   void set_drift_sharing(DriftSharing choice) { drift_sharing_ = choice; }
   static constexpr int shared_drift_team = 4;
   // Whether the gather walks each block of particles' entries flat (core/particle_passes_simd.hpp,
-  // GatherInput::row_owner) or takes the particles one by one: automatic (flat where a thread of
-  // the step's team has at least flat_gather_share particles), flat, or one by one. On the
-  // development VM's Zen 5, one by one was the faster with 5,818 particles a thread (the branch
-  // predictor remembers where each particle's entries end) and the flat walk with 11,636 or more
-  // (docs/performance.md sec. 40). The flat walk needs the kernel's entry owners; without them the
-  // gather goes one by one. The results are the same. Not saved with the state.
+  // GatherInput::row_owner) or takes the particles one by one: automatic, flat, or one by one.
+  // Automatic times the step's own steps with each walk and keeps the faster
+  // (core/gather_walk_trial.hpp); before its first trial ends, and where only one walk exists
+  // (the SSE2 object, the scalar law), it walks flat where a thread of the step's team has at
+  // least flat_gather_share particles. Which walk is faster depends on the core: on the
+  // development VM's Zen 5 one by one with 5,818 particles a thread (the branch predictor
+  // remembers where each particle's entries end) and flat with 11,636 or more
+  // (docs/performance.md sec. 40), on its Intel Xeon flat with both (sec. 53). The flat walk
+  // needs the kernel's entry owners; without them the gather goes one by one. The results are
+  // the same. Not saved with the state.
   enum class GatherWalk { automatic, flat, one_by_one };
   void set_gather_walk(GatherWalk choice) { gather_walk_ = choice; }
   static constexpr long flat_gather_share = 10000;
   static constexpr bool walks_gather_flat_automatically(long n, int team) {
     return n >= flat_gather_share * team;
   }
+  long flat_gather_steps() const { return flat_gather_steps_; }  // steps whose gather went flat
+  const GatherWalkTrial& gather_walk_trial() const { return gather_walk_trial_; }
   // How the stages in a step's regions share their chunks (core/chunk_queue.hpp): about
   // `chunks_per_thread` chunks of each block (at most 1,024 particles each), and whether a block's
   // last untaken chunk stays with its owner. Automatic (the default): 8 chunks and the owner keeps
@@ -331,10 +338,15 @@ class Simulation {
   std::optional<ChunkSharing> chunk_sharing_;  // (set_chunk_sharing; nullopt: automatic)
   long shared_drift_steps_ = 0;
   GatherWalk gather_walk_ = GatherWalk::automatic;
-  bool flat_gather_ = false;  // for this step's gather (walks_gather_flat of its team)
-  bool walks_gather_flat(long n, int team) const {
-    return gather_walk_ == GatherWalk::flat ||
-           (gather_walk_ == GatherWalk::automatic && walks_gather_flat_automatically(n, team));
+  bool flat_gather_ = false;           // for this step's gather (walks_gather_flat of its team)
+  GatherWalkTrial gather_walk_trial_;  // (automatic, where both walks exist)
+  long flat_gather_steps_ = 0;
+  // whether the automatic walk is chosen by timing the steps (both walks exist)
+  bool times_gather_walks() const;
+  bool walks_gather_flat(long n, int team) {
+    if (gather_walk_ != GatherWalk::automatic) return gather_walk_ == GatherWalk::flat;
+    const bool rule = walks_gather_flat_automatically(n, team);
+    return times_gather_walks() ? gather_walk_trial_.flat(n, team, rule) : rule;
   }
   bool shares_drift(int team) const {
     return team > 1 && (drift_sharing_ == DriftSharing::always ||

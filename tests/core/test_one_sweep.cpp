@@ -31,6 +31,7 @@ struct SweepRun {
   std::vector<Vec3> springs;
   std::vector<double> largest_overlap;  // per step
   long steps = 0, sweeps = 0, refreshes = 0, rebuilds = 0, handed_back = 0, touching = 0;
+  long flat_gathers = 0;  // steps whose gather walked flat
   std::string kernel;
   StepPhaseTimes times;  // when the run was timed
 };
@@ -87,6 +88,7 @@ SweepRun run(Simulation::OneSweep choice, int threads, long steps, bool timed = 
   }
   r.steps = steps;
   r.sweeps = sim.one_sweep_steps();
+  r.flat_gathers = sim.flat_gather_steps();
   r.refreshes = sim.list_refresh_count() - refreshes;
   r.rebuilds = sim.rebuild_count() - rebuilds;
   r.particles = sim.particles();
@@ -152,7 +154,29 @@ TEST(GatherWalk, FlatGivesTheBitsOfOneByOneInStagesAndSweepsOnOneAndTwoThreads) 
     }
 }
 
-// Automatic: flat where each thread of the team has flat_gather_share particles or more.
+// Automatic times the steps with each walk and keeps the faster (core/gather_walk_trial.hpp;
+// its choice from given times: test_gather_walk_trial.cpp): a run that walks both, in stages and
+// in sweeps, gives the bits of one by one. (On one thread, whose team cannot change and start
+// the trial again; the kernel's AVX2 or AVX-512 passes, which have both walks.)
+TEST(GatherWalk, AutomaticWalksBothAndGivesTheBitsOfOneByOne) {
+  using Walk = Simulation::GatherWalk;
+  const SweepRun one_by_one = run(Simulation::OneSweep::never, 1, steps, false, Walk::one_by_one);
+  if (one_by_one.kernel == std::string("scalar") || one_by_one.kernel == std::string("sse2"))
+    GTEST_SKIP() << "one walk only";
+  EXPECT_EQ(one_by_one.flat_gathers, 0);
+  for (const auto sweep : {Simulation::OneSweep::never, Simulation::OneSweep::always}) {
+    SCOPED_TRACE(sweep == Simulation::OneSweep::always ? "swept" : "stages");
+    const SweepRun automatic = run(sweep, 1, steps, false, Walk::automatic);
+    expect_identical(one_by_one, automatic);
+    // 1,728 beads: one by one by the rule, flat in half the trial's steps, then the faster
+    using Trial = GatherWalkTrial;
+    EXPECT_GE(automatic.flat_gathers, Trial::trial_steps / 2);
+    EXPECT_LE(automatic.flat_gathers, steps - Trial::warm_up_steps - Trial::trial_steps / 2);
+  }
+}
+
+// Automatic, before its first trial ends: flat where each thread of the team has
+// flat_gather_share particles or more.
 TEST(GatherWalk, AutomaticIsFlatFromTenThousandParticlesAThread) {
   EXPECT_EQ(Simulation::flat_gather_share, 10000);
   EXPECT_TRUE(Simulation::walks_gather_flat_automatically(11636, 1));   // dense-11k, 1 thread
@@ -167,9 +191,9 @@ TEST(OneSweep, AutomaticWhereTheDriftsLeadFitsTheL3OnTwoThreadsWherePartnersLieB
   // at about 1.5 KiB a bead: the farthest partner's distance in the particle order within half
   // the L3; the mean reach beyond the L2 for 2 threads, within it for 1 (docs/performance.md
   // sec. 45 for the tiles of dense-11k)
-  EXPECT_EQ(one_sweep_team(600.0, 1200, 1L << 20, 32L << 20), 1);   // the reach inside the L2
-  EXPECT_EQ(one_sweep_team(1475.0, 2952, 1L << 20, 32L << 20), 2);  // dense-88k on the VM
-  EXPECT_EQ(one_sweep_team(3994.2, 7933, 1L << 20, 32L << 20), 2);  // 744,704 beads, 4x4x4
+  EXPECT_EQ(one_sweep_team(600.0, 1200, 1L << 20, 32L << 20), 1);    // the reach inside the L2
+  EXPECT_EQ(one_sweep_team(1475.0, 2952, 1L << 20, 32L << 20), 2);   // dense-88k on the VM
+  EXPECT_EQ(one_sweep_team(3994.2, 7933, 1L << 20, 32L << 20), 2);   // 744,704 beads, 4x4x4
   EXPECT_EQ(one_sweep_team(8856.3, 17853, 1L << 20, 32L << 20), 0);  // 838k beads, 6x6x2
   EXPECT_EQ(one_sweep_team(8856.3, 17853, 1L << 20, 64L << 20), 2);  // a larger L3
   EXPECT_EQ(one_sweep_team(1475.0, 2952, 4L << 20, 32L << 20), 1);   // a larger L2
