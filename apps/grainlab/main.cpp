@@ -46,8 +46,9 @@ int requested_threads(int argc, char** argv, int cpus) {
 // first, for 0.1 s, how many CPUs other processes keep busy (those of lower priority, nice, apart:
 // niced_processes_yield). With a thread count (--threads, OMP_NUM_THREADS) the threads sleep at
 // once when they would not each find a free CPU (io/wait_policy.hpp). Without one, their team
-// follows the free CPUs while they run (io/team_follower.hpp, sec. 31) and its threads spin a
-// while, a long while where processes of lower priority are busy (barrier_spin_rounds, sec. 38).
+// follows the free CPUs while they run (io/team_follower.hpp, sec. 31) and its threads spin
+// longer (sec. 53), a long while where processes of lower priority are busy (barrier_spin_rounds,
+// sec. 38).
 // libgomp reads its settings when it is loaded, before main, so the setting takes a restart of
 // the program with it in the environment; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept,
 // and threads bound by OMP_PROC_BIND, OMP_PLACES or GOMP_CPU_AFFINITY get no restart (it would

@@ -127,7 +127,8 @@ bool spins_long_for_niced(bool team_follows, double niced_cpus) {
 }
 
 const char* barrier_spin_rounds(bool team_follows, double niced_cpus) {
-  return spins_long_for_niced(team_follows, niced_cpus) ? "300000" : "1000";
+  if (spins_long_for_niced(team_follows, niced_cpus)) return "300000";
+  return team_follows ? "20000" : "1000";
 }
 
 bool openmp_binds_threads(const char* proc_bind, const char* places,

@@ -71,17 +71,21 @@ enum class WaitPolicy { bounded_spin, passive };
 WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
 
 // How many rounds a thread that waits at a barrier spins before it sleeps (GOMP_SPINCOUNT), for
-// threads that spin (bounded_spin). 1,000 (about 20 us on the development VM) where no process
-// of lower priority is busy: the fastest on an idle machine within the noise, and the least a
-// shared core costs a fixed team (a longer spin made one 2.5x slower with a busy loop on the
-// other core; docs/performance.md sec. 36). Where processes of lower priority keep at least half
-// a CPU busy (`niced_cpus`, counted where niced_processes_yield) and the team follows the free
-// CPUs (io/team_follower.hpp: a process of normal priority that takes a CPU later costs it a
-// thread within two seconds, not a long spin at every barrier), 300,000 (libgomp's own): a
-// thread that sleeps hands its CPU to the niced process and waits for the scheduler to take it
-// back; spinning, it keeps it. With a `nice 19` busy loop on one of the 2 cores the short
-// reference shear took 8.0-8.7 s with the team following the free CPUs, against 9.8-16.5 s
-// before (1,000 rounds, the loop counted as busy) and 7.6-9.5 s idle (sec. 38).
+// threads that spin (bounded_spin).
+// - A fixed team (--threads, OMP_NUM_THREADS): 1,000 (about 20 us on the development VM's Zen 5):
+//   the least a shared core costs it (a longer spin made one 2.5x slower with a busy loop on the
+//   other core; docs/performance.md sec. 36), and the idle speed within the noise there.
+// - A team that follows the free CPUs (io/team_follower.hpp: a process that takes a CPU later
+//   costs it a thread within two seconds, not a long spin at every barrier): 20,000. On the VM's
+//   Zen 5 it was even with 1,000 on the long runs (sec. 36); on its Intel Xeon the threads slept
+//   at most barriers with 1,000 (the kernel's switching 4 % of the samples) and 20,000 was
+//   1.09-1.11x faster on the short reference shear and the plane strain test (sec. 53).
+// - The same team where processes of lower priority keep at least half a CPU busy
+//   (`niced_cpus`, counted where niced_processes_yield): 300,000 (libgomp's own): a thread that
+//   sleeps hands its CPU to the niced process and waits for the scheduler to take it back;
+//   spinning, it keeps it. With a `nice 19` busy loop on one of the 2 cores the short reference
+//   shear took 8.0-8.7 s with the team following the free CPUs, against 9.8-16.5 s before (1,000
+//   rounds, the loop counted as busy) and 7.6-9.5 s idle (sec. 38).
 const char* barrier_spin_rounds(bool team_follows, double niced_cpus);
 // Whether barrier_spin_rounds gives the long spin (what a run says on stderr when it does).
 bool spins_long_for_niced(bool team_follows, double niced_cpus);

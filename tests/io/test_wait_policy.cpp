@@ -96,10 +96,10 @@ TEST(WaitPolicy, NicedProcessesYieldToAProcessAtNiceZeroOrBelowOnly) {
   EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
-TEST(WaitPolicy, ThreadsSpinLongOnlyForAFollowingTeamAndProcessesOfLowerPriority) {
+TEST(WaitPolicy, AFollowingTeamSpinsLongerAndLongestForProcessesOfLowerPriority) {
   EXPECT_STREQ(barrier_spin_rounds(false, 0.0), "1000");
-  EXPECT_STREQ(barrier_spin_rounds(true, 0.0), "1000");    // idle machine
-  EXPECT_STREQ(barrier_spin_rounds(true, 0.45), "1000");   // less than half a CPU niced
+  EXPECT_STREQ(barrier_spin_rounds(true, 0.0), "20000");   // idle machine, a following team
+  EXPECT_STREQ(barrier_spin_rounds(true, 0.45), "20000");  // less than half a CPU niced
   EXPECT_STREQ(barrier_spin_rounds(true, 0.5), "300000");  // a nice 19 loop on one of 2 CPUs
   EXPECT_STREQ(barrier_spin_rounds(false, 1.0), "1000");   // a fixed team: never long
   EXPECT_TRUE(spins_long_for_niced(true, 0.5));
