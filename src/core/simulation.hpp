@@ -170,8 +170,9 @@ class Simulation {
   static constexpr bool walks_gather_flat_automatically(long n, int team) {
     return n >= flat_gather_share * team;
   }
-  long flat_gather_steps() const { return flat_gather_steps_; }  // steps whose gather went flat
-  const GatherWalkTrial& gather_walk_trial() const { return gather_walk_trial_; }
+  // steps whose gather was to walk flat (the walk chosen; without the kernel's owners it went
+  // one by one all the same)
+  long flat_gather_steps() const { return flat_gather_steps_; }
   // How the stages in a step's regions share their chunks (core/chunk_queue.hpp): about
   // `chunks_per_thread` chunks of each block (at most 1,024 particles each), and whether a block's
   // last untaken chunk stays with its owner. Automatic (the default): 8 chunks and the owner keeps

@@ -77,9 +77,10 @@ WaitPolicy choose_wait_policy(int threads, int cpus, double busy_cpus);
 //   other core; docs/performance.md sec. 36), and the idle speed within the noise there.
 // - A team that follows the free CPUs (io/team_follower.hpp: a process that takes a CPU later
 //   costs it a thread within two seconds, not a long spin at every barrier): 20,000. On the VM's
-//   Zen 5 it was even with 1,000 on the long runs (sec. 36); on its Intel Xeon the threads slept
-//   at most barriers with 1,000 (the kernel's switching 4 % of the samples) and 20,000 was
-//   1.09-1.11x faster on the short reference shear and the plane strain test (sec. 53).
+//   Zen 5 it was even with 1,000 on the long runs (sec. 36); on its Intel Xeon, with 1,000, the
+//   kernel's switching of sleeping threads took 4 % of the short shear's samples, and 20,000
+//   (set by hand) was about 1.09x faster on the demo's job and the plane strain test and 1.105x
+//   on the short reference shear with --threads 2 (sec. 53).
 // - The same team where processes of lower priority keep at least half a CPU busy
 //   (`niced_cpus`, counted where niced_processes_yield): 300,000 (libgomp's own): a thread that
 //   sleeps hands its CPU to the niced process and waits for the scheduler to take it back;
