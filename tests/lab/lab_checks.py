@@ -611,8 +611,10 @@ def oedometer_checkpoint_survives_kill():
         assert run("prepare", OEDOMETER, "--out", spec, "--quiet").returncode == 0
         path = os.path.join(d, "oed.toml")
         open(path, "w").write(open(OEDOMETER).read().replace(
-            "count = 500", f'count = 500\nspecimen = "{spec}"\ncheckpoint_interval = "0.5 s"'))
-        kill_after_checkpoint_then_resume(d, path, 2000)
+            "count = 500", f'count = 500\nspecimen = "{spec}"\ncheckpoint_interval = "0.2 s"'))
+        # (the run takes about 0.75 s on a fast core: the first checkpoint at 0.2 s and the kill
+        # 0.1 s after it leave it running; at 0.5 s and 0.3 s it could finish first)
+        kill_after_checkpoint_then_resume(d, path, 2000, linger=0.1)
 
 
 PLANE_STRAIN = open(os.path.join(SRC, "examples/plane_strain/small.toml")).read()
