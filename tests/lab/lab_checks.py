@@ -239,8 +239,11 @@ def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin
             break
         time.sleep(0.01)
     time.sleep(linger)
+    ended = p.poll() is not None
     p.kill()  # no chance to write anything more
     p.wait()
+    # (a run that ended first has removed its checkpoint: the test's timing, not the resume, failed)
+    assert not ended, "the run ended before the kill: lengthen it or checkpoint earlier"
     assert os.path.exists(os.path.join(b, checkpoint)), f"a periodic {checkpoint} must exist"
     if checkpoint == "preparation.bin":
         assert not os.path.exists(os.path.join(b, "specimen.csv")), "killed after the preparation"
