@@ -229,16 +229,28 @@ def element_test_rerun_with_overwrite():
 def kill_after_checkpoint_then_resume(d, path, polls, checkpoint="checkpoint.bin", linger=0.3):
     """Runs `path` twice: once through, once killed (SIGKILL) `linger` s after its first periodic
     `checkpoint` file appeared and resumed; both must give the same curve and summary, and the
-    finished run cannot be resumed again. Returns the two output directories."""
+    finished run cannot be resumed again. Returns the two output directories.
+
+    On a fast host the run may have less than `linger` left after its first checkpoint: the
+    linger is then cut to half of what the uninterrupted run had left at that moment (its wall
+    time less the second run's time to the checkpoint), so that the kill still falls between the
+    checkpoint and the end."""
     import time
     a, b = os.path.join(d, "a"), os.path.join(d, "b")
+    start = time.monotonic()
     assert run("run", path, "--out", a, "--quiet", "--threads", "1").returncode == 0
+    through = time.monotonic() - start  # s, the uninterrupted run end to end
+    start = time.monotonic()
     p = subprocess.Popen([EXE, "run", path, "--out", b, "--quiet", "--threads", "1"])
     for _ in range(polls):
         if os.path.exists(os.path.join(b, checkpoint)):
             break
         time.sleep(0.01)
-    time.sleep(linger)
+    to_checkpoint = time.monotonic() - start
+    wait = max(0.0, min(linger, 0.5 * (through - to_checkpoint)))
+    time.sleep(wait)
+    print(f"{checkpoint} after {to_checkpoint:.2f} s, killed {wait:.2f} s later "
+          f"(the run through took {through:.2f} s)")
     ended = p.poll() is not None
     p.kill()  # no chance to write anything more
     p.wait()
